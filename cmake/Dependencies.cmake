@@ -1,0 +1,16 @@
+# Every dependency comes from Debian packages installed by scripts/install-deps.
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+find_package(nlohmann_json REQUIRED)
+find_package(CLI11 REQUIRED)
+pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
+
+# Torch's CMake config prints warnings about optional CUDA/kineto pieces; they are harmless on CPU.
+find_package(Torch REQUIRED)
+
+if(RECON_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(RECON_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

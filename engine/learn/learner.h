@@ -1,0 +1,180 @@
+#pragma once
+
+// The RECON learner, behind a header that does not include Torch: everything outside
+// engine/learn sees only these plain types, so it compiles in a second and never links Torch
+// unless it trains.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/core/dataset.h"
+
+namespace recon::learn {
+
+/// Which objective is trained.
+enum class Method {
+  kRecon,     ///< action + beacon (+ play) terms
+  kBaseline,  ///< the same feature and policy networks, action term only
+};
+
+/// How a Gaussian head is scored against its target.
+enum class LossKind {
+  kNll,        ///< the paper: Gaussian negative log-likelihood with a learned log-variance
+  kMseSample,  ///< the authors' code: MSE of a reparameterised sample (mean + std * noise)
+};
+
+Method ParseMethod(const std::string& name);      ///< "recon" | "baseline"; UserError otherwise
+LossKind ParseLossKind(const std::string& name);  ///< "nll" | "mse-sample"; UserError otherwise
+std::string ToString(Method method);
+std::string ToString(LossKind loss);
+
+/// Architecture. The defaults are the authors' networks for 3x32x32 images (REFERENCE.md 2).
+struct NetworkConfig {
+  int feature_dim = 6;  ///< k; must exceed the beacon dimension d for RECON
+
+  // Image feature network (y is {C, H, W}): per entry of conv_channels a conv(kernel) + ReLU +
+  // maxpool(2) block, then fully connected layers with ReLU, then a linear layer to k.
+  std::vector<int> conv_channels = {6, 16};
+  int conv_kernel = 5;
+  std::vector<int> cnn_hidden = {120, 60};
+  /// y is multiplied by this before the CNN. The authors feed raw 0-255 values (scale 1).
+  float image_scale = 1.0f;
+
+  // Vector feature network (y is {m}): an MLP on [x, y] with ReLU hidden layers.
+  std::vector<int> feature_mlp_hidden = {64, 64};
+
+  /// Policy on [x, phi]: first hidden layer tanh, later ones ReLU (authors), Gaussian head.
+  std::vector<int> policy_hidden = {32, 32};
+  /// Beacon net on phi: tanh hidden layers, Gaussian head.
+  std::vector<int> beacon_hidden = {16, 16};
+
+  bool operator==(const NetworkConfig& other) const = default;
+};
+
+/// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
+/// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).
+/// AuthorsRecipe() gives the authors' code exactly (MSE of a sample, weights 1.0 / 1.2 / 1.2).
+struct TrainConfig {
+  Method method = Method::kRecon;
+  LossKind loss = LossKind::kNll;
+  double learning_rate = 4e-4;  ///< Adam
+  int batch_size = 20;          ///< drawn with replacement each step, from demos and from play
+  int steps = 6001;
+  double action_weight = 1.0;
+  double beacon_weight = 1.0;
+  double play_weight = 1.0;
+  /// The authors' rule: retrain from scratch (new seed stream) if, at the end, the action error
+  /// exceeds restart_action_threshold or the beacon + play error exceeds
+  /// restart_beacon_threshold. Judged on the mean squared error of the heads' mean predictions
+  /// over the whole training set, so the rule means the same under either loss kind.
+  bool restart_rule = false;
+  int max_attempts = 5;
+  double restart_action_threshold = 0.1;
+  double restart_beacon_threshold = 1.0;
+  uint64_t seed = 0;
+
+  bool operator==(const TrainConfig& other) const = default;
+};
+
+/// The authors' code: MSE of a reparameterised sample, weights 1.0 / 1.2 / 1.2, restart rule on.
+TrainConfig AuthorsRecipe();
+
+/// Losses of one training step (per-sample means). Terms that are off are 0.
+struct StepMetrics {
+  int attempt = 0;  ///< 0 for the first try, 1.. after restarts
+  int step = 0;     ///< 0-based step within the attempt
+  float action_loss = 0;
+  float beacon_loss = 0;
+  float play_loss = 0;
+  float total_loss = 0;
+};
+
+struct TrainResult {
+  int attempts = 1;       ///< tries used (restart rule)
+  int steps_run = 0;      ///< steps of the final attempt
+  StepMetrics final_metrics;
+  double seconds = 0;
+  bool cancelled = false;
+};
+
+/// Sets Torch's intra-op thread count for this process (the `--threads` setting).
+void SetThreads(int threads);
+
+class PolicyImpl;
+
+/// A trained policy: (x, y) -> action. Never needs a beacon. Cheap to copy (shares weights);
+/// safe to call from one thread at a time.
+class Policy {
+ public:
+  Policy();
+  explicit Policy(std::shared_ptr<PolicyImpl> impl);
+  ~Policy();
+  Policy(const Policy&);
+  Policy& operator=(const Policy&);
+
+  const DataSpec& spec() const;
+  /// Mean action for one observation.
+  std::vector<float> Act(const std::vector<float>& x, const std::vector<float>& y) const;
+  /// Mean actions for many observations at once (rows), much faster than one at a time.
+  std::vector<std::vector<float>> ActBatch(const std::vector<std::vector<float>>& xs,
+                                           const std::vector<std::vector<float>>& ys) const;
+  /// The beacon net's mean prediction from the features of (x, y) (RECON only; empty for a
+  /// Baseline). Lets a user see what the features learned to track.
+  std::vector<float> PredictBeacon(const std::vector<float>& x, const std::vector<float>& y) const;
+  /// The feature vector phi = f(x, y).
+  std::vector<float> Features(const std::vector<float>& x, const std::vector<float>& y) const;
+
+ private:
+  std::shared_ptr<PolicyImpl> impl_;
+};
+
+class TrainerImpl;
+
+/// Trains the feature, beacon and policy networks on a Dataset.
+///
+/// Construction validates the data (ValidateDataset) and the configuration (k > d for RECON,
+/// positive steps and batch) and throws UserError with a clear message otherwise. Training is
+/// deterministic for a given seed on one thread. A step whose loss is NaN or infinite stops
+/// training with DivergenceError before the weights are touched.
+class Trainer {
+ public:
+  Trainer(const Dataset& data, const NetworkConfig& network, const TrainConfig& train);
+  ~Trainer();
+  Trainer(const Trainer&) = delete;
+  Trainer& operator=(const Trainer&) = delete;
+
+  /// Called after every step (from the training thread).
+  void SetObserver(std::function<void(const StepMetrics&)> observer);
+
+  /// Runs the remaining steps (all of them for a fresh trainer, the rest after Resume), applying
+  /// the restart rule if configured. Returns early, with cancelled = true, when *cancel becomes
+  /// true; the trainer can then be checkpointed and resumed.
+  TrainResult Train(const std::atomic<bool>* cancel = nullptr);
+
+  int step() const;  ///< steps done in the current attempt
+  /// The current model as an inference-only policy (a copy of the weights).
+  Policy policy() const;
+
+  /// Writes model, optimizer state, both configs, step, RNG state and the dataset fingerprint
+  /// to one file, atomically (temporary file + rename).
+  void SaveCheckpoint(const std::string& path) const;
+  /// Reopens a checkpoint to continue training on `data`. UserError if the file is missing or
+  /// corrupt, or the data's fingerprint or shapes differ from those it was trained on.
+  static std::unique_ptr<Trainer> Resume(const std::string& path, const Dataset& data);
+
+  const NetworkConfig& network_config() const;
+  const TrainConfig& train_config() const;
+
+ private:
+  Trainer();
+  std::unique_ptr<TrainerImpl> impl_;
+};
+
+/// Loads the policy stored in a checkpoint. UserError if missing, corrupt, or not a checkpoint.
+Policy LoadPolicy(const std::string& checkpoint_path);
+
+}  // namespace recon::learn

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/core/dataset.h"
+
+namespace recon::worlds {
+
+/// What the robot observes at one step: its own state x and the environment observation y.
+struct Observation {
+  std::vector<float> x;
+  std::vector<float> y;
+};
+
+/// A task the robot is taught: scenarios, dynamics, an expert, beacons and a score.
+///
+/// A World is configured with one beacon placement at construction (the placement decides
+/// b's size). Reset(seed) draws a new scenario; everything random in the scenario (layout,
+/// image background, which object a Random beacon lands on, beacon noise) comes from that
+/// seed, so a scenario is reproduced exactly by its seed.
+class World {
+ public:
+  virtual ~World() = default;
+
+  /// Short lower-case name, e.g. "dynamic2d".
+  virtual std::string Name() const = 0;
+  /// Shapes of x, y, b, u under the configured placement.
+  virtual DataSpec Spec() const = 0;
+  /// Steps in a demonstration and in an evaluation rollout.
+  virtual int EpisodeLength() const = 0;
+
+  /// Starts a new scenario drawn from `seed`.
+  virtual void Reset(uint64_t seed) = 0;
+  virtual Observation Observe() const = 0;
+  /// Applies action u (size Spec().u_dim) and advances the world one step.
+  virtual void Step(const std::vector<float>& u) = 0;
+  /// The demonstrator's action in the current state.
+  virtual std::vector<float> ExpertAction() const = 0;
+  /// The beacon reading b in the current state under the configured placement (with noise if
+  /// configured). Empty when the placement is "none".
+  virtual std::vector<float> BeaconReading() = 0;
+  /// Draws one play-data sample (x, y, b) from the current scenario without changing it.
+  virtual PlaySample SamplePlay() = 0;
+  /// Play samples drawn per recorded scenario in the authors' recipe.
+  virtual int PlaySamplesPerScenario() const = 0;
+
+  /// The score of the current state at the end of a rollout.
+  virtual double EpisodeMetric() const = 0;
+  /// True when a larger metric is better (reward), false when smaller is (distance, error).
+  virtual bool HigherIsBetter() const = 0;
+  /// Name and unit of the metric, e.g. "final distance to the red object".
+  virtual std::string MetricName() const = 0;
+};
+
+/// Records one demonstration per seed: Reset(seed), then EpisodeLength() steps of (x, y, b, u)
+/// with the expert acting; also `play_per_scenario` play samples per scenario (drawn from the
+/// initial scenario before the demonstration runs). Used by experiments and by `recon record`.
+Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
+                             int play_per_scenario);
+
+/// A policy as the world sees it: an action for an observation. No beacon: a trained policy never
+/// needs one.
+using PolicyFn = std::function<std::vector<float>(const Observation&)>;
+
+/// Resets to `seed`, runs `policy` for EpisodeLength() steps and returns EpisodeMetric().
+double Rollout(World& world, uint64_t seed, const PolicyFn& policy);
+
+}  // namespace recon::worlds
