@@ -47,10 +47,12 @@ void ProgressLine::Finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
   finished_ = true;
-  Draw(true);
+  // Without a terminal every line stays in the log: do not print the last state twice.
+  if (is_tty_ || drawn_done_ != done_) Draw(true);
 }
 
 void ProgressLine::Draw(bool final_line) {
+  drawn_done_ = done_;
   constexpr int kWidth = 30;
   const double fraction = static_cast<double>(done_) / static_cast<double>(total_);
   const int filled = static_cast<int>(fraction * kWidth);
@@ -62,10 +64,10 @@ void ProgressLine::Draw(bool final_line) {
   if (!final_line && done_ > 0 && done_ < total_) {
     timing += ", " + FormatDuration(elapsed / fraction - elapsed) + " left";
   }
-  std::fprintf(out_, "%s%s [%s] %lld/%lld %3d%% %s%s%s", is_tty_ ? "\r\033[K" : "",
-               label_.c_str(), bar.c_str(), static_cast<long long>(done_),
-               static_cast<long long>(total_), static_cast<int>(fraction * 100.0), timing.c_str(),
-               detail_.empty() ? "" : "  ", detail_.c_str());
+  std::fprintf(out_, "%s%s [%s] %lld/%lld %3d%% %s%s%s", is_tty_ ? "\r\033[K" : "", label_.c_str(),
+               bar.c_str(), static_cast<long long>(done_), static_cast<long long>(total_),
+               static_cast<int>(fraction * 100.0), timing.c_str(), detail_.empty() ? "" : "  ",
+               detail_.c_str());
   if (!is_tty_ || final_line) std::fputc('\n', out_);
   std::fflush(out_);
 }

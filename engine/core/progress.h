@@ -27,6 +27,7 @@ class ProgressLine {
   std::string label_;
   int64_t total_;
   int64_t done_ = 0;
+  int64_t drawn_done_ = -1;  ///< done_ at the last line printed (so Finish does not repeat it)
   std::string detail_;
   std::FILE* out_;
   bool is_tty_;

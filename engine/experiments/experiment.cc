@@ -1,1 +1,234 @@
-// Placeholder: being written.
+#include "engine/experiments/experiment.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "engine/core/error.h"
+#include "engine/core/rng.h"
+#include "engine/core/stats.h"
+#include "engine/experiments/evaluation.h"
+#include "engine/worlds/world_factory.h"
+
+namespace recon::experiments {
+
+namespace {
+
+// Stream numbers keep the three kinds of seeds apart (Rng::Derive).
+constexpr uint64_t kDemoStream = 1000;
+constexpr uint64_t kTrainStream = 2000;
+constexpr uint64_t kTestStream = 3000;
+// Loss curves are averaged over windows so that a figure shows about this many points.
+constexpr int kLossCurvePoints = 120;
+
+struct Task {
+  int demos;
+  size_t condition;
+  int run;
+};
+
+}  // namespace
+
+void ValidateExperimentConfig(const ExperimentConfig& config) {
+  if (config.conditions.empty()) throw UserError("no conditions to run");
+  if (config.demos.empty()) throw UserError("--demos needs at least one value");
+  for (int d : config.demos) {
+    if (d <= 0) throw UserError("--demos must be positive (got " + std::to_string(d) + ")");
+  }
+  if (config.runs <= 0) throw UserError("--runs must be positive");
+  if (config.tests <= 0) throw UserError("--tests must be positive");
+  if (config.jobs <= 0) throw UserError("--jobs must be positive");
+  if (config.train.steps <= 0 || config.baseline_steps <= 0) {
+    throw UserError("--steps and --baseline-steps must be positive");
+  }
+  for (const Condition& c : config.conditions) {
+    const int d = worlds::MakeWorld(config.world, c.placement, c.noise_sigma, config.authors_compat)
+                      ->Spec()
+                      .b_dim;
+    if (c.method == learn::Method::kRecon && config.network.feature_dim <= d) {
+      throw UserError("condition '" + c.name +
+                      "': feature size k=" + std::to_string(config.network.feature_dim) +
+                      " must exceed the beacon dimension d=" + std::to_string(d) +
+                      " (RECON needs k > d; raise --feature-dim)");
+    }
+  }
+}
+
+uint64_t DemoScenarioSeed(uint64_t seed, int run, int index) {
+  return Rng::Derive(Rng::Derive(seed, kDemoStream + run), index);
+}
+
+uint64_t TrainSeed(uint64_t seed, int run) { return Rng::Derive(seed, kTrainStream + run); }
+
+uint64_t TestScenarioSeed(uint64_t seed, int index) {
+  return Rng::Derive(Rng::Derive(seed, kTestStream), index);
+}
+
+namespace {
+
+/// Trains and evaluates one (condition, demos, run). Thread-safe: touches only its own objects.
+RunResult RunOne(const ExperimentConfig& config, const Task& task,
+                 const std::vector<uint64_t>& test_seeds, LossCurve* curve,
+                 const std::atomic<bool>* cancel) {
+  const Condition& condition = config.conditions[task.condition];
+  std::unique_ptr<worlds::World> world = worlds::MakeWorld(
+      config.world, condition.placement, condition.noise_sigma, config.authors_compat);
+
+  RunResult result;
+  result.condition = condition.name;
+  result.demos = task.demos;
+  result.run = task.run;
+  result.data_seed = Rng::Derive(config.seed, kDemoStream + task.run);
+  result.train_seed = TrainSeed(config.seed, task.run);
+
+  std::vector<uint64_t> scenario_seeds;
+  for (int i = 0; i < task.demos; ++i) {
+    scenario_seeds.push_back(DemoScenarioSeed(config.seed, task.run, i));
+  }
+  const int play = condition.use_play ? world->PlaySamplesPerScenario() : 0;
+  const Dataset data = worlds::RecordDemonstrations(*world, scenario_seeds, play);
+
+  learn::TrainConfig train = config.train;
+  train.method = condition.method;
+  train.seed = result.train_seed;
+  train.steps =
+      condition.method == learn::Method::kBaseline ? config.baseline_steps : config.train.steps;
+  learn::Trainer trainer(data, config.network, train);
+  if (curve != nullptr) {
+    curve->condition = condition.name;
+    curve->demos = task.demos;
+    const int window = std::max(1, train.steps / kLossCurvePoints);
+    trainer.SetObserver([curve, window, sum = 0.0, count = 0](const learn::StepMetrics& m) mutable {
+      if (m.step == 0) {  // a restart begins a fresh curve
+        curve->step.clear();
+        curve->action_loss.clear();
+        sum = 0.0;
+        count = 0;
+      }
+      sum += m.action_loss;
+      if (++count == window) {
+        curve->step.push_back(m.step + 1 - window / 2);
+        curve->action_loss.push_back(sum / count);
+        sum = 0.0;
+        count = 0;
+      }
+    });
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    const learn::TrainResult trained = trainer.Train(cancel);
+    result.attempts = trained.attempts;
+    result.train_steps = trained.steps_run;
+    result.final_losses = trained.final_metrics;
+    if (trained.cancelled) throw UserError("cancelled");
+  } catch (const DivergenceError& e) {
+    // A diverged run is an outcome of this seed, not a reason to lose the whole sweep: it is
+    // recorded with a NaN metric, counted in the summary, and left out of the means.
+    result.metric = std::nan("");
+    result.train_steps = e.step();
+    result.train_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+  result.train_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const learn::Policy policy = trainer.policy();
+  const WorldMaker make_test_world = [&] {
+    return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat);
+  };
+  result.metric = Mean(EvaluatePolicy(make_test_world, policy, test_seeds));
+  return result;
+}
+
+}  // namespace
+
+ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver& on_run,
+                               const std::atomic<bool>* cancel) {
+  ValidateExperimentConfig(config);
+  const auto start = std::chrono::steady_clock::now();
+
+  std::vector<uint64_t> test_seeds;
+  for (int i = 0; i < config.tests; ++i) test_seeds.push_back(TestScenarioSeed(config.seed, i));
+
+  ExperimentResult out;
+  {
+    const WorldMaker make_world = [&] {
+      return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat);
+    };
+    const std::unique_ptr<worlds::World> probe = make_world();
+    out.metric_name = probe->MetricName();
+    out.higher_is_better = probe->HigherIsBetter();
+    out.expert_metric = Mean(EvaluateExpert(make_world, test_seeds));
+  }
+
+  // Run-major order: if the sweep is stopped early, every condition has the same runs done.
+  std::vector<Task> tasks;
+  for (int run = 0; run < config.runs; ++run) {
+    for (int demos : config.demos) {
+      for (size_t c = 0; c < config.conditions.size(); ++c) tasks.push_back({demos, c, run});
+    }
+  }
+
+  std::vector<RunResult> results(tasks.size());
+  std::vector<LossCurve> curves(config.demos.size() * config.conditions.size());
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr first_error;
+  std::mutex mutex;
+
+  auto worker = [&] {
+    while (!failed) {
+      const size_t i = next++;
+      if (i >= tasks.size()) return;
+      if (cancel != nullptr && *cancel) {
+        failed = true;
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!first_error) first_error = std::make_exception_ptr(UserError("cancelled"));
+        return;
+      }
+      const Task& task = tasks[i];
+      size_t demos_index = 0;
+      while (config.demos[demos_index] != task.demos) ++demos_index;
+      LossCurve* curve = task.run == 0
+                             ? &curves[demos_index * config.conditions.size() + task.condition]
+                             : nullptr;
+      try {
+        results[i] = RunOne(config, task, test_seeds, curve, cancel);
+        std::lock_guard<std::mutex> lock(mutex);
+        if (on_run) on_run(results[i]);
+      } catch (...) {
+        failed = true;
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!first_error) first_error = std::current_exception();
+      }
+    }
+  };
+  const int jobs = std::min<int>(config.jobs, static_cast<int>(tasks.size()));
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+  for (std::thread& t : threads) t.join();
+  if (first_error) std::rethrow_exception(first_error);
+
+  // Report in (demos, condition, run) order regardless of which worker finished first.
+  for (size_t d = 0; d < config.demos.size(); ++d) {
+    for (size_t c = 0; c < config.conditions.size(); ++c) {
+      for (size_t i = 0; i < tasks.size(); ++i) {
+        if (tasks[i].demos == config.demos[d] && tasks[i].condition == c) {
+          out.runs.push_back(results[i]);
+        }
+      }
+    }
+  }
+  out.loss_curves = std::move(curves);
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace recon::experiments

@@ -94,14 +94,16 @@ struct StepMetrics {
 };
 
 struct TrainResult {
-  int attempts = 1;       ///< tries used (restart rule)
-  int steps_run = 0;      ///< steps of the final attempt
+  int attempts = 1;   ///< tries used (restart rule)
+  int steps_run = 0;  ///< steps of the final attempt
   StepMetrics final_metrics;
   double seconds = 0;
   bool cancelled = false;
 };
 
-/// Sets Torch's intra-op thread count for this process (the `--threads` setting).
+/// Sets Torch's intra-op thread count for this process (the `--threads` setting). Training
+/// itself runs on the calling thread (one core per Trainer, no allocation per step): to use
+/// more cores, train several models at once, as experiment sweeps do.
 void SetThreads(int threads);
 
 class PolicyImpl;
@@ -140,6 +142,10 @@ class TrainerImpl;
 /// positive steps and batch) and throws UserError with a clear message otherwise. Training is
 /// deterministic for a given seed on one thread. A step whose loss is NaN or infinite stops
 /// training with DivergenceError before the weights are touched.
+///
+/// Determinism holds per machine: the same seed gives bitwise the same model however many
+/// trainers run at once, but CPUs with different vector units (AVX-512, AVX2, none) round
+/// differently. A Trainer is used from one thread at a time; separate Trainers are independent.
 class Trainer {
  public:
   Trainer(const Dataset& data, const NetworkConfig& network, const TrainConfig& train);

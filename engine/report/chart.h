@@ -50,8 +50,7 @@ struct LineChart {
 /// Writes the chart to `path`; the format follows the extension (.png or .svg). Throws
 /// UserError if the path cannot be written or the chart is malformed (sizes disagree).
 void WriteChart(const BarChart& chart, const std::string& path, int width = 960, int height = 540);
-void WriteChart(const LineChart& chart, const std::string& path, int width = 960,
-                int height = 540);
+void WriteChart(const LineChart& chart, const std::string& path, int width = 960, int height = 540);
 
 /// The palette used when a chart names no colours (colour-blind safe).
 Color PaletteColor(int index);

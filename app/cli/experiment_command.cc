@@ -1,0 +1,196 @@
+#include "app/cli/experiment_command.h"
+
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/progress.h"
+#include "engine/experiments/condition.h"
+#include "engine/experiments/experiment.h"
+#include "engine/experiments/summary.h"
+#include "engine/learn/learner.h"
+
+namespace recon::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What the user typed; turned into an ExperimentConfig once parsing is done.
+struct ExperimentFlags {
+  std::string world;
+  std::vector<int> demos = {10};
+  int runs = 15;
+  int tests = 100;
+  std::vector<std::string> conditions;
+  std::vector<double> noise;
+  uint64_t seed = 1;
+  std::string out;
+  bool force = false;
+  int jobs = 0;
+  std::string loss = "nll";
+  double learning_rate = 4e-4;
+  int steps = 6001;
+  int baseline_steps = 3001;
+  int batch = 20;
+  int feature_dim = 6;
+  bool restart = false;
+  bool authors_compat = false;
+  bool authors_recipe = false;
+};
+
+std::string DefaultOutDir(const std::string& world) {
+  char stamp[32];
+  const std::time_t now = std::time(nullptr);
+  std::strftime(stamp, sizeof(stamp), "%Y%m%d-%H%M%S", std::localtime(&now));
+  return "out/" + world + "-" + stamp;
+}
+
+experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::App& command) {
+  experiments::ExperimentConfig config;
+  config.world = flags.world;
+  const bool conditions_given = command.count("--conditions") > 0;
+  const CLI::Option* noise_option = command.get_option_no_throw("--noise");
+  const bool noise_given = noise_option != nullptr && noise_option->count() > 0;
+  std::vector<std::string> names =
+      conditions_given ? flags.conditions : experiments::DefaultConditionNames(flags.world);
+  // With no --conditions, dynamic2d runs the paper's whole figure, noise levels included.
+  std::vector<double> noise = flags.noise;
+  if (!conditions_given && !noise_given && flags.world == "dynamic2d") noise = {2.5, 4.5, 6.5};
+  config.conditions = experiments::ParseConditions(flags.world, names, noise);
+  config.demos = flags.demos;
+  config.runs = flags.runs;
+  config.tests = flags.tests;
+  config.seed = flags.seed;
+  config.authors_compat = flags.authors_compat;
+  config.jobs = flags.jobs > 0 ? flags.jobs
+                               : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  config.network.feature_dim = flags.feature_dim;
+  if (flags.authors_recipe) {
+    config.train = learn::AuthorsRecipe();
+  } else {
+    config.train.loss = learn::ParseLossKind(flags.loss);
+    config.train.learning_rate = flags.learning_rate;
+    config.train.steps = flags.steps;
+    config.train.batch_size = flags.batch;
+    config.train.restart_rule = flags.restart;
+  }
+  config.baseline_steps = flags.baseline_steps;
+  return config;
+}
+
+void PrintTable(const std::vector<experiments::ConditionSummary>& summaries,
+                const experiments::ExperimentResult& result) {
+  std::printf("\n%-16s %6s %9s %7s %4s %6s  %s\n", "condition", "demos", "mean", "sem", "n",
+              "steps", result.higher_is_better ? "(higher is better)" : "(lower is better)");
+  for (const auto& s : summaries) {
+    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s\n", s.condition.c_str(), s.demos, s.mean, s.sem,
+                s.n, s.train_steps,
+                s.diverged > 0 ? ("  (" + std::to_string(s.diverged) + " diverged)").c_str() : "");
+  }
+  std::printf("%-16s %6s %9.3f\n", "expert", "", result.expert_metric);
+}
+
+void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOptions& global) {
+  const experiments::ExperimentConfig config = ToConfig(flags, command);
+  experiments::ValidateExperimentConfig(config);
+  const std::string out = flags.out.empty() ? DefaultOutDir(flags.world) : flags.out;
+  // Fail before an hour of training, not after: the folder must be writable, and results of an
+  // earlier experiment are never replaced unless asked.
+  if (fs::exists(fs::path(out) / "summary.json") && !flags.force) {
+    throw UserError(out +
+                    " already holds an experiment's results (summary.json); choose "
+                    "another --out or pass --force to replace them");
+  }
+  EnsureWritableDirectory(out);
+  learn::SetThreads(global.threads);
+
+  const int total = static_cast<int>(config.conditions.size() * config.demos.size()) * config.runs;
+  std::printf(
+      "recon experiment %s: %zu conditions x %zu demo counts x %d runs = %d models, "
+      "%d test scenarios, seed %llu, %d parallel jobs x %d thread(s)\n",
+      config.world.c_str(), config.conditions.size(), config.demos.size(), config.runs, total,
+      config.tests, static_cast<unsigned long long>(config.seed), config.jobs, global.threads);
+  std::fflush(stdout);
+  ProgressLine progress("training", total);
+  const experiments::ExperimentResult result =
+      experiments::RunExperiment(config, [&](const experiments::RunResult& r) {
+        char detail[128];
+        std::snprintf(detail, sizeof(detail), "%s demos %d run %d: %.3f", r.condition.c_str(),
+                      r.demos, r.run, r.metric);
+        progress.Advance(1, detail);
+      });
+  progress.Finish();
+
+  const std::vector<std::string> written = experiments::WriteExperimentOutputs(config, result, out);
+  PrintTable(experiments::Summarize(config, result), result);
+  std::printf("\nwall time %.1f s\n", result.wall_seconds);
+  for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
+}
+
+void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::string& help,
+                     int default_runs, const GlobalOptions& global) {
+  auto flags = std::make_shared<ExperimentFlags>();
+  flags->world = world;
+  flags->runs = default_runs;
+  CLI::App* command = experiment.add_subcommand(world, help);
+  command->add_option("--demos", flags->demos, "demonstrations per run; a list sweeps them")
+      ->delimiter(',')
+      ->capture_default_str();
+  command->add_option("--runs", flags->runs, "training runs per condition")->capture_default_str();
+  command->add_option("--tests", flags->tests, "test scenarios")->capture_default_str();
+  std::string known;
+  for (const std::string& n : experiments::KnownConditionNames(world)) {
+    known += (known.empty() ? "" : ",") + n;
+  }
+  command->add_option("--conditions", flags->conditions, "conditions to run, from: " + known)
+      ->delimiter(',');
+  if (world == "dynamic2d") {
+    command
+        ->add_option("--noise", flags->noise,
+                     "beacon noise sigmas for extra Exact conditions (default with no "
+                     "--conditions: 2.5,4.5,6.5)")
+        ->delimiter(',');
+    command->add_flag("--authors-compat", flags->authors_compat,
+                      "reproduce the authors' two slips (docs/worlds.md)");
+  }
+  command->add_option("--seed", flags->seed, "master seed")->capture_default_str();
+  command->add_option("--out", flags->out, "output folder (default out/<world>-<time>)");
+  command->add_flag("--force", flags->force, "replace the results already in --out");
+  command->add_option("--jobs", flags->jobs, "runs trained in parallel (default: cores)");
+  command->add_option("--loss", flags->loss, "nll (paper) or mse-sample (authors' code)")
+      ->capture_default_str();
+  command->add_option("--lr", flags->learning_rate, "Adam learning rate")->capture_default_str();
+  command->add_option("--steps", flags->steps, "training steps with beacons")
+      ->capture_default_str();
+  command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")
+      ->capture_default_str();
+  command->add_option("--batch", flags->batch, "batch size")->capture_default_str();
+  command->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
+      ->capture_default_str();
+  command->add_flag("--restart", flags->restart, "the authors' retrain-on-bad-loss rule");
+  command->add_flag("--authors-recipe", flags->authors_recipe,
+                    "the authors' exact recipe: mse-sample loss, weights 1/1.2/1.2, restarts");
+  command->callback([flags, command, &global] { Run(*flags, *command, global); });
+}
+
+}  // namespace
+
+void AddExperimentCommands(CLI::App& app, const GlobalOptions& global) {
+  CLI::App* experiment =
+      app.add_subcommand("experiment", "reproduce one of the paper's experiments");
+  experiment->require_subcommand(1);
+  AddWorldCommand(*experiment, "dynamic2d",
+                  "Dynamic 2D: beacon placements and noise (paper Fig. 5)", 15, global);
+  AddWorldCommand(*experiment, "static2d",
+                  "Static 2D: position/distance beacons with and without play (paper Fig. 4)", 20,
+                  global);
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""The reference point for our training speed: a plain PyTorch loop of the authors' Dynamic 2D
+network and recipe (REFERENCE.md section 2), on one thread, batch 20, Exact placement.
+
+Written for this benchmark from the published description (not the authors' code). Prints one
+JSON object: {"ms_per_step": ..., "steps": ..., "torch": version}.
+"""
+import json
+import sys
+import time
+
+import torch
+import torch.nn as nn
+import torch.nn.functional as F
+
+torch.set_num_threads(1)
+torch.manual_seed(0)
+
+
+class Features(nn.Module):
+    def __init__(self):
+        super().__init__()
+        self.conv1 = nn.Conv2d(3, 6, 5)
+        self.conv2 = nn.Conv2d(6, 16, 5)
+        self.fc1 = nn.Linear(400, 120)
+        self.fc2 = nn.Linear(120, 60)
+        self.fc3 = nn.Linear(60, 6)
+
+    def forward(self, y):
+        h = F.max_pool2d(F.relu(self.conv1(y)), 2)
+        h = F.max_pool2d(F.relu(self.conv2(h)), 2)
+        h = torch.flatten(h, 1)
+        return self.fc3(F.relu(self.fc2(F.relu(self.fc1(h)))))
+
+
+class Head(nn.Module):
+    """Two hidden layers, then mean and log-variance."""
+
+    def __init__(self, n_in, hidden, n_out, second_act):
+        super().__init__()
+        self.l1 = nn.Linear(n_in, hidden)
+        self.l2 = nn.Linear(hidden, hidden)
+        self.mean = nn.Linear(hidden, n_out)
+        self.logvar = nn.Linear(hidden, n_out)
+        self.second_act = second_act
+
+    def forward(self, h):
+        h = self.second_act(self.l2(torch.tanh(self.l1(h))))
+        return self.mean(h), self.logvar(h)
+
+
+def sample_mse(mean, logvar, target):
+    sample = mean + torch.exp(0.5 * logvar) * torch.randn_like(mean)
+    return F.mse_loss(sample, target)
+
+
+def main():
+    steps = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
+    n = 100  # 10 demos x 10 steps
+    images = torch.randint(225, 256, (n, 3, 32, 32)).float()
+    robot = torch.randn(n, 2)
+    actions = torch.randn(n, 2)
+    beacons = torch.randn(n, 2) * 7
+
+    features = Features()
+    policy = Head(8, 32, 2, torch.relu)
+    beacon = Head(6, 16, 2, torch.tanh)
+    params = list(features.parameters()) + list(policy.parameters()) + list(beacon.parameters())
+    optimizer = torch.optim.Adam(params, lr=4e-4)
+
+    def step():
+        idx = torch.randint(0, n, (20,))
+        phi = features(images[idx])
+        u_mean, u_logvar = policy(torch.cat([robot[idx], phi], 1))
+        b_mean, b_logvar = beacon(phi)
+        loss = 1.0 * sample_mse(u_mean, u_logvar, actions[idx]) + 1.2 * sample_mse(
+            b_mean, b_logvar, beacons[idx])
+        optimizer.zero_grad()
+        loss.backward()
+        optimizer.step()
+
+    for _ in range(100):  # warm-up
+        step()
+    start = time.perf_counter()
+    for _ in range(steps):
+        step()
+    elapsed = time.perf_counter() - start
+    print(json.dumps({"ms_per_step": 1000.0 * elapsed / steps, "steps": steps,
+                      "torch": torch.__version__}))
+
+
+if __name__ == "__main__":
+    main()

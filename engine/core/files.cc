@@ -1,0 +1,68 @@
+#include "engine/core/files.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "engine/core/error.h"
+
+namespace recon {
+
+namespace fs = std::filesystem;
+
+std::string TemporarySibling(const std::string& path) {
+  return path + ".tmp." + std::to_string(getpid());
+}
+
+void ReplaceFile(const std::string& from, const std::string& to) {
+  if (std::rename(from.c_str(), to.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(from.c_str());
+    throw UserError("cannot write " + to + ": " + reason);
+  }
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  const std::string tmp = TemporarySibling(path);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw UserError("cannot write " + path + ": " + std::strerror(errno));
+  size_t written = 0;
+  while (written < content.size()) {
+    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      std::remove(tmp.c_str());
+      throw UserError("cannot write " + path + ": " + reason);
+    }
+    written += static_cast<size_t>(n);
+  }
+  // fsync so that after a power loss the rename never points at an empty file.
+  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw UserError("cannot write " + path + ": " + reason);
+  }
+  ReplaceFile(tmp, path);
+}
+
+void EnsureWritableDirectory(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw UserError("cannot create output folder " + dir + ": " + ec.message());
+  if (!fs::is_directory(dir)) throw UserError("output path " + dir + " is not a folder");
+  const std::string probe = (fs::path(dir) / (".write-test." + std::to_string(getpid()))).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw UserError("output folder " + dir + " is not writable: " + std::strerror(errno));
+  }
+  ::close(fd);
+  std::remove(probe.c_str());
+}
+
+}  // namespace recon

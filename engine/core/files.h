@@ -1,0 +1,22 @@
+#pragma once
+
+#include <string>
+
+namespace recon {
+
+/// Writes `content` to `path` atomically: to a temporary file in the same folder, flushed, then
+/// renamed over `path`. A crash or error leaves any previous file intact. Throws UserError naming
+/// the path if it cannot be written.
+void WriteFileAtomically(const std::string& path, const std::string& content);
+
+/// Creates `dir` (and parents) if needed and checks that a file can be created in it. Throws
+/// UserError naming the folder otherwise. Call before long work so it fails fast.
+void EnsureWritableDirectory(const std::string& dir);
+
+/// A path of a temporary file next to `path` (same folder, so rename is atomic).
+std::string TemporarySibling(const std::string& path);
+
+/// Renames `from` over `to` (atomic on one file system). Throws UserError on failure.
+void ReplaceFile(const std::string& from, const std::string& to);
+
+}  // namespace recon

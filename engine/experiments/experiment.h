@@ -1,0 +1,82 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/experiments/condition.h"
+#include "engine/learn/learner.h"
+
+namespace recon::experiments {
+
+/// A paper experiment as data: which world, which conditions, how many demonstrations, runs and
+/// test scenarios, and the training recipe.
+struct ExperimentConfig {
+  std::string world;  ///< "dynamic2d" | "static2d"
+  std::vector<Condition> conditions;
+  std::vector<int> demos = {10};  ///< several values sweep data efficiency
+  int runs = 15;                  ///< independent training runs per condition and demo count
+  int tests = 100;                ///< test scenarios, shared by every condition and run
+  uint64_t seed = 1;              ///< everything random derives from this (see SeedsOf* below)
+  bool authors_compat = false;    ///< reproduce the authors' two Dynamic 2D slips
+  int jobs = 2;                   ///< runs trained in parallel, one Torch thread each
+  learn::NetworkConfig network;
+  learn::TrainConfig train;   ///< method, seed and steps are set per condition and run
+  int baseline_steps = 3001;  ///< the authors train the Baseline for half as long
+};
+
+/// The outcome of one training run of one condition.
+struct RunResult {
+  std::string condition;
+  int demos = 0;
+  int run = 0;
+  uint64_t data_seed = 0;   ///< seeds the run's demonstration scenarios
+  uint64_t train_seed = 0;  ///< seeds initialisation, batches and sampling noise
+  double metric = 0;        ///< mean episode metric over the test scenarios
+  int attempts = 1;
+  int train_steps = 0;
+  double train_seconds = 0;
+  learn::StepMetrics final_losses;
+};
+
+/// A condition's action loss over training (run 0), averaged in windows, for the loss figure.
+struct LossCurve {
+  std::string condition;
+  int demos = 0;
+  std::vector<double> step;
+  std::vector<double> action_loss;
+};
+
+struct ExperimentResult {
+  std::vector<RunResult> runs;  ///< in (demos, condition, run) order
+  std::vector<LossCurve> loss_curves;
+  double wall_seconds = 0;
+  std::string metric_name;
+  bool higher_is_better = true;
+  double expert_metric = 0;  ///< the expert's mean score on the test scenarios
+};
+
+/// Seed of scenario `index` of run `run`'s demonstrations. A run with 5 demos uses a prefix of
+/// the scenarios of the same run with 10, so a data-efficiency sweep adds data, never swaps it.
+uint64_t DemoScenarioSeed(uint64_t seed, int run, int index);
+/// Seed of the learner's randomness in run `run` (the same for every condition: paired runs).
+uint64_t TrainSeed(uint64_t seed, int run);
+/// Seed of test scenario `index` (the same for every condition and run).
+uint64_t TestScenarioSeed(uint64_t seed, int index);
+
+/// Checks the configuration as far as it can without training: counts, steps, and for every
+/// RECON condition that the feature size k exceeds its beacon dimension d. Throws UserError.
+void ValidateExperimentConfig(const ExperimentConfig& config);
+
+/// Called once per finished run (from worker threads, serialised by the runner).
+using RunObserver = std::function<void(const RunResult&)>;
+
+/// Trains every condition for every run and demo count (in parallel, `jobs` at a time), rolls each
+/// trained policy out on the same test scenarios without beacons, and returns the table. Stops
+/// early (and throws UserError "cancelled") when *cancel becomes true.
+ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver& on_run = {},
+                               const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace recon::experiments

@@ -1,0 +1,221 @@
+#include "engine/experiments/summary.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/core/files.h"
+#include "engine/core/stats.h"
+#include "engine/report/chart.h"
+
+namespace recon::experiments {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+int StepsOf(const ExperimentConfig& config, const Condition& c) {
+  return c.method == learn::Method::kBaseline ? config.baseline_steps : config.train.steps;
+}
+
+std::string ResultsCsv(const ExperimentResult& result) {
+  std::ostringstream csv;
+  csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
+         "final_action_loss,final_beacon_loss,final_play_loss\n";
+  char buf[512];
+  for (const RunResult& r : result.runs) {
+    std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g\n",
+                  r.condition.c_str(), r.demos, r.run, static_cast<unsigned long long>(r.data_seed),
+                  static_cast<unsigned long long>(r.train_seed), r.metric, r.attempts,
+                  r.train_steps, r.train_seconds, r.final_losses.action_loss,
+                  r.final_losses.beacon_loss, r.final_losses.play_loss);
+    csv << buf;
+  }
+  return csv.str();
+}
+
+json SummaryBlock(const ConditionSummary& s) {
+  return {{"label", s.label},
+          {"mean", s.mean},
+          {"sem", s.sem},
+          {"n", s.n},
+          {"diverged", s.diverged},
+          {"train_steps", s.train_steps},
+          {"mean_attempts", s.mean_attempts},
+          {"mean_train_seconds", s.mean_train_seconds}};
+}
+
+json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
+                 const std::vector<ConditionSummary>& summaries) {
+  json by_demos = json::object();
+  for (const ConditionSummary& s : summaries) {
+    by_demos[std::to_string(s.demos)]["conditions"][s.condition] = SummaryBlock(s);
+  }
+  json conditions = by_demos[std::to_string(config.demos.front())]["conditions"];
+  json train = {
+      {"loss", learn::ToString(config.train.loss)},
+      {"learning_rate", config.train.learning_rate},
+      {"batch_size", config.train.batch_size},
+      {"steps", config.train.steps},
+      {"baseline_steps", config.baseline_steps},
+      {"weights",
+       {config.train.action_weight, config.train.beacon_weight, config.train.play_weight}},
+      {"restart_rule", config.train.restart_rule}};
+  json seeds = {{"seed", config.seed},
+                {"demo_scenarios", "DemoScenarioSeed(seed, run, index)"},
+                {"training", "TrainSeed(seed, run)"},
+                {"test_scenarios", "TestScenarioSeed(seed, index)"}};
+  return {{"experiment", config.world},
+          {"metric",
+           {{"name", result.metric_name},
+            {"higher_is_better", result.higher_is_better},
+            {"expert", result.expert_metric}}},
+          {"conditions", conditions},
+          {"by_demos", by_demos},
+          {"demos", config.demos},
+          {"runs", config.runs},
+          {"tests", config.tests},
+          {"seeds", seeds},
+          {"authors_compat", config.authors_compat},
+          {"jobs", config.jobs},
+          {"train", train},
+          {"wall_seconds", result.wall_seconds}};
+}
+
+std::string Subtitle(const ExperimentConfig& config, const ExperimentResult& result, int demos) {
+  std::ostringstream s;
+  s << config.runs << " runs per bar (mean \xC2\xB1 standard error), " << demos << " demos, "
+    << config.tests << " test scenarios, seed " << config.seed << ", "
+    << learn::ToString(config.train.loss) << " loss";
+  return s.str();
+}
+
+std::string Title(const ExperimentConfig& config) {
+  return config.world == "dynamic2d" ? "Dynamic 2D: beacon placements"
+                                     : "Static 2D: beacons and play data";
+}
+
+}  // namespace
+
+std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
+                                        const ExperimentResult& result) {
+  std::vector<ConditionSummary> out;
+  for (int demos : config.demos) {
+    for (const Condition& c : config.conditions) {
+      ConditionSummary s;
+      s.condition = c.name;
+      s.label = c.label;
+      s.demos = demos;
+      s.train_steps = StepsOf(config, c);
+      std::vector<double> metrics;
+      double attempts = 0, seconds = 0;
+      int runs = 0;
+      for (const RunResult& r : result.runs) {
+        if (r.condition != c.name || r.demos != demos) continue;
+        ++runs;
+        attempts += r.attempts;
+        seconds += r.train_seconds;
+        if (std::isfinite(r.metric)) {
+          metrics.push_back(r.metric);
+        } else {
+          ++s.diverged;
+        }
+      }
+      s.mean = Mean(metrics);
+      s.sem = StandardError(metrics);
+      s.n = static_cast<int>(metrics.size());
+      s.mean_attempts = runs > 0 ? attempts / runs : 0;
+      s.mean_train_seconds = runs > 0 ? seconds / runs : 0;
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
+                                                const ExperimentResult& result,
+                                                const std::string& dir) {
+  EnsureWritableDirectory(dir);
+  const std::vector<ConditionSummary> summaries = Summarize(config, result);
+  const fs::path root(dir);
+  std::vector<std::string> written;
+
+  // The paper-style bar figure, for the first demonstration count.
+  report::BarChart bars;
+  bars.title = Title(config);
+  bars.subtitle = Subtitle(config, result, config.demos.front());
+  bars.y_label = result.metric_name;
+  for (const ConditionSummary& s : summaries) {
+    if (s.demos != config.demos.front()) continue;
+    bars.labels.push_back(s.label);
+    bars.values.push_back(s.mean);
+    bars.errors.push_back(s.sem);
+  }
+  char expert[64];
+  std::snprintf(expert, sizeof(expert), "expert %.3f", result.expert_metric);
+  bars.references.push_back({result.expert_metric, expert});
+  const std::string figure = (root / (config.world + ".png")).string();
+  report::WriteChart(bars, figure);
+  report::WriteChart(bars, (root / (config.world + ".svg")).string());
+  written.push_back(figure);
+
+  if (config.demos.size() > 1) {
+    report::LineChart curve;
+    curve.title = Title(config) + ": data efficiency";
+    curve.subtitle = std::to_string(config.runs) + " runs per point (mean \xC2\xB1 standard error)";
+    curve.x_label = "demonstrations";
+    curve.y_label = result.metric_name;
+    for (size_t c = 0; c < config.conditions.size(); ++c) {
+      report::LineChart::Series series;
+      series.name = config.conditions[c].label;
+      for (const ConditionSummary& s : summaries) {
+        if (s.condition != config.conditions[c].name) continue;
+        series.x.push_back(s.demos);
+        series.y.push_back(s.mean);
+        series.errors.push_back(s.sem);
+      }
+      curve.series.push_back(series);
+    }
+    curve.references.push_back({result.expert_metric, expert});
+    const std::string path = (root / "data_efficiency.png").string();
+    report::WriteChart(curve, path);
+    written.push_back(path);
+  }
+
+  report::LineChart losses;
+  losses.title = Title(config) + ": action loss while training (run 0)";
+  losses.subtitle = "window means, " + learn::ToString(config.train.loss) + " loss, " +
+                    std::to_string(config.demos.front()) + " demos";
+  losses.x_label = "training step";
+  losses.y_label = "action loss";
+  losses.log_y = config.train.loss == learn::LossKind::kMseSample;
+  for (size_t c = 0; c < config.conditions.size(); ++c) {
+    const LossCurve& lc = result.loss_curves[c];  // first demo count comes first
+    if (lc.step.empty()) continue;
+    report::LineChart::Series series;
+    series.name = config.conditions[c].label;
+    series.x = lc.step;
+    series.y = lc.action_loss;
+    series.markers = false;
+    losses.series.push_back(series);
+  }
+  if (!losses.series.empty()) {
+    const std::string path = (root / "losses.png").string();
+    report::WriteChart(losses, path);
+    written.push_back(path);
+  }
+
+  const std::string csv = (root / "results.csv").string();
+  WriteFileAtomically(csv, ResultsCsv(result));
+  written.push_back(csv);
+  // summary.json last: its presence marks a complete result folder.
+  const std::string summary = (root / "summary.json").string();
+  WriteFileAtomically(summary, SummaryJson(config, result, summaries).dump(2) + "\n");
+  written.push_back(summary);
+  return written;
+}
+
+}  // namespace recon::experiments

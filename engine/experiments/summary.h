@@ -1,0 +1,36 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/experiments/experiment.h"
+
+namespace recon::experiments {
+
+/// Mean and standard error of one condition at one demonstration count.
+struct ConditionSummary {
+  std::string condition;
+  std::string label;
+  int demos = 0;
+  double mean = 0;
+  double sem = 0;
+  int n = 0;         ///< runs that finished (diverged runs are excluded from the mean)
+  int diverged = 0;  ///< runs whose loss became NaN or infinite
+  int train_steps = 0;
+  double mean_attempts = 0;
+  double mean_train_seconds = 0;
+};
+
+/// One summary per (demos, condition), in config order.
+std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
+                                        const ExperimentResult& result);
+
+/// Writes, atomically, into `dir`: results.csv (one row per run and condition), summary.json,
+/// `<world>.png` and `.svg` (bars with standard-error whiskers, like the paper's figures),
+/// losses.png (the action loss of run 0 of each condition), and, when several demo counts were
+/// run, data_efficiency.png. Returns the paths written, figure first.
+std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
+                                                const ExperimentResult& result,
+                                                const std::string& dir);
+
+}  // namespace recon::experiments

@@ -1,0 +1,215 @@
+// Checkpoints: one PyTorch archive (zip) per file holding the weights and Adam moments as
+// tensors, and the configurations, data shape and trainer state as JSON strings. The only
+// translation unit of the learner that includes Torch.
+
+#include <torch/serialize/input-archive.h>
+#include <torch/serialize/output-archive.h>
+
+#include <ATen/ATen.h>
+
+#include <bit>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/learn/config_json.h"
+#include "engine/learn/learner.h"
+#include "engine/learn/policy_impl.h"
+#include "engine/learn/trainer_impl.h"
+
+namespace recon::learn {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr char kFormat[] = "recon-checkpoint/1";
+
+struct CheckpointContents {
+  NetworkConfig network;
+  TrainConfig train;
+  DataSpec spec;
+  uint64_t fingerprint = 0;
+  TrainerState state;
+};
+
+json RngToJson(const Rng::State& s) {
+  return {{"s", {s.s[0], s.s[1], s.s[2], s.s[3]}},
+          {"has_spare_normal", s.has_spare_normal},
+          {"spare_normal_bits", std::bit_cast<uint64_t>(s.spare_normal)}};
+}
+
+Rng::State RngFromJson(const json& j) {
+  Rng::State s{};
+  const json& words = j.at("s");
+  if (!words.is_array() || words.size() != 4) throw UserError("generator state is invalid");
+  for (int i = 0; i < 4; ++i) s.s[i] = words.at(i).get<uint64_t>();
+  s.has_spare_normal = j.at("has_spare_normal").get<bool>();
+  s.spare_normal = std::bit_cast<double>(j.at("spare_normal_bits").get<uint64_t>());
+  return s;
+}
+
+std::string StateToJson(const TrainerState& s, uint64_t fingerprint) {
+  json j;
+  j["attempt"] = s.attempt;
+  j["step"] = s.step;
+  j["finished"] = s.finished;
+  j["adam_step"] = s.adam_step;
+  j["batch_rng"] = RngToJson(s.batch_rng);
+  j["noise_rng"] = RngToJson(s.noise_rng);
+  j["last"] = {{"attempt", s.last.attempt},         {"step", s.last.step},
+               {"action_loss", s.last.action_loss}, {"beacon_loss", s.last.beacon_loss},
+               {"play_loss", s.last.play_loss},     {"total_loss", s.last.total_loss}};
+  j["dataset_fingerprint"] = fingerprint;
+  return j.dump();
+}
+
+void StateFromJson(const std::string& text, TrainerState& s, uint64_t& fingerprint) {
+  try {
+    const json j = json::parse(text);
+    s.attempt = j.at("attempt").get<int>();
+    s.step = j.at("step").get<int>();
+    s.finished = j.at("finished").get<bool>();
+    s.adam_step = j.at("adam_step").get<int64_t>();
+    s.batch_rng = RngFromJson(j.at("batch_rng"));
+    s.noise_rng = RngFromJson(j.at("noise_rng"));
+    const json& last = j.at("last");
+    s.last.attempt = last.at("attempt").get<int>();
+    s.last.step = last.at("step").get<int>();
+    s.last.action_loss = last.at("action_loss").get<float>();
+    s.last.beacon_loss = last.at("beacon_loss").get<float>();
+    s.last.play_loss = last.at("play_loss").get<float>();
+    s.last.total_loss = last.at("total_loss").get<float>();
+    fingerprint = j.at("dataset_fingerprint").get<uint64_t>();
+  } catch (const json::exception& e) {
+    throw UserError(std::string("trainer state is missing or invalid (") + e.what() + ")");
+  }
+}
+
+at::Tensor ToTensor(const std::vector<float>& values) {
+  return at::from_blob(const_cast<float*>(values.data()), {static_cast<int64_t>(values.size())},
+                       at::kFloat)
+      .clone();
+}
+
+std::vector<float> FromTensor(const at::Tensor& tensor, const char* name) {
+  if (tensor.scalar_type() != at::kFloat || tensor.dim() != 1) {
+    throw UserError(std::string("tensor '") + name + "' is not a 1-D float tensor");
+  }
+  const at::Tensor t = tensor.contiguous();
+  const float* data = t.data_ptr<float>();
+  return std::vector<float>(data, data + t.numel());
+}
+
+std::string ReadString(torch::serialize::InputArchive& archive, const char* key) {
+  c10::IValue value;
+  if (!archive.try_read(key, value) || !value.isString()) {
+    throw UserError(std::string("entry '") + key + "' is missing");
+  }
+  return value.toStringRef();
+}
+
+std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+// Reads everything; `with_optimizer` = false skips the Adam moments (LoadPolicy).
+CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw UserError("checkpoint '" + path + "' does not exist");
+  }
+  CheckpointContents c;
+  try {
+    torch::serialize::InputArchive archive;
+    archive.load_from(path);
+    if (ReadString(archive, "format") != kFormat) {
+      throw UserError("not a RECON checkpoint (format is not " + std::string(kFormat) + ")");
+    }
+    c.network = NetworkConfigFromJson(ReadString(archive, "network"));
+    c.train = TrainConfigFromJson(ReadString(archive, "train"));
+    c.spec = DataSpecFromJson(ReadString(archive, "spec"));
+    StateFromJson(ReadString(archive, "state"), c.state, c.fingerprint);
+    at::Tensor tensor;
+    archive.read("params", tensor);
+    c.state.params = FromTensor(tensor, "params");
+    if (with_optimizer) {
+      archive.read("exp_avg", tensor);
+      c.state.exp_avg = FromTensor(tensor, "exp_avg");
+      archive.read("exp_avg_sq", tensor);
+      c.state.exp_avg_sq = FromTensor(tensor, "exp_avg_sq");
+    }
+  } catch (const UserError& e) {
+    throw UserError("checkpoint '" + path + "': " + e.what());
+  } catch (const std::exception& e) {
+    throw UserError("checkpoint '" + path + "' is corrupt or not a RECON checkpoint (" +
+                    FirstLine(e.what()) + ")");
+  }
+  return c;
+}
+
+}  // namespace
+
+void Trainer::SaveCheckpoint(const std::string& path) const {
+  const TrainerState s = impl_->State();
+  const std::string temp = path + ".partial";
+  try {
+    torch::serialize::OutputArchive archive;
+    archive.write("format", c10::IValue(std::string(kFormat)));
+    archive.write("network", c10::IValue(ToJson(impl_->network())));
+    archive.write("train", c10::IValue(ToJson(impl_->train())));
+    archive.write("spec", c10::IValue(ToJson(impl_->arch().spec)));
+    archive.write("state", c10::IValue(StateToJson(s, impl_->fingerprint())));
+    archive.write("params", ToTensor(s.params));
+    archive.write("exp_avg", ToTensor(s.exp_avg));
+    archive.write("exp_avg_sq", ToTensor(s.exp_avg_sq));
+    archive.save_to(temp);
+    // rename() replaces the old file atomically: a crash leaves the old or the new checkpoint.
+    std::filesystem::rename(temp, path);
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    throw UserError("cannot write checkpoint '" + path + "': " + FirstLine(e.what()));
+  }
+}
+
+std::unique_ptr<Trainer> Trainer::Resume(const std::string& path, const Dataset& data) {
+  CheckpointContents c = ReadCheckpoint(path, /*with_optimizer=*/true);
+  if (!(c.spec == data.spec)) {
+    throw UserError("checkpoint '" + path + "' was trained on data shaped (" + c.spec.ToString() +
+                    ") but this data is (" + data.spec.ToString() + ")");
+  }
+  std::unique_ptr<Trainer> trainer(new Trainer());
+  trainer->impl_ = std::make_unique<TrainerImpl>(data, c.network, c.train);
+  if (trainer->impl_->fingerprint() != c.fingerprint) {
+    std::ostringstream msg;
+    msg << "checkpoint '" << path << "' was trained on different data (dataset fingerprint "
+        << std::hex << c.fingerprint << ", this data " << trainer->impl_->fingerprint()
+        << "): resume with the dataset it was trained on";
+    throw UserError(msg.str());
+  }
+  try {
+    trainer->impl_->SetState(c.state);
+  } catch (const UserError& e) {
+    throw UserError("checkpoint '" + path + "': " + e.what());
+  }
+  return trainer;
+}
+
+Policy LoadPolicy(const std::string& checkpoint_path) {
+  CheckpointContents c = ReadCheckpoint(checkpoint_path, /*with_optimizer=*/false);
+  Architecture arch;
+  try {
+    arch = BuildArchitecture(c.spec, c.network, c.train.method);
+  } catch (const UserError& e) {
+    throw UserError("checkpoint '" + checkpoint_path + "': " + e.what());
+  }
+  if (static_cast<int64_t>(c.state.params.size()) != arch.num_params) {
+    throw UserError("checkpoint '" + checkpoint_path + "' holds " +
+                    std::to_string(c.state.params.size()) +
+                    " parameters but its configuration describes " +
+                    std::to_string(arch.num_params) + ": the architecture differs");
+  }
+  return Policy(std::make_shared<PolicyImpl>(std::move(arch), c.state.params));
+}
+
+}  // namespace recon::learn

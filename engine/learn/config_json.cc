@@ -1,0 +1,122 @@
+#include "engine/learn/config_json.h"
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.h"
+
+namespace recon::learn {
+
+using nlohmann::json;
+
+namespace {
+
+json Parse(const std::string& text, const char* what) {
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    throw UserError(std::string(what) + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+template <typename T>
+void Read(const json& j, const char* key, T& value, const char* what) {
+  try {
+    j.at(key).get_to(value);
+  } catch (const json::exception& e) {
+    throw UserError(std::string(what) + ": field '" + key + "' is missing or invalid (" + e.what() +
+                    ")");
+  }
+}
+
+}  // namespace
+
+std::string ToJson(const NetworkConfig& n) {
+  json j;
+  j["feature_dim"] = n.feature_dim;
+  j["conv_channels"] = n.conv_channels;
+  j["conv_kernel"] = n.conv_kernel;
+  j["cnn_hidden"] = n.cnn_hidden;
+  j["image_scale"] = n.image_scale;
+  j["feature_mlp_hidden"] = n.feature_mlp_hidden;
+  j["policy_hidden"] = n.policy_hidden;
+  j["beacon_hidden"] = n.beacon_hidden;
+  return j.dump();
+}
+
+std::string ToJson(const TrainConfig& t) {
+  json j;
+  j["method"] = ToString(t.method);
+  j["loss"] = ToString(t.loss);
+  j["learning_rate"] = t.learning_rate;
+  j["batch_size"] = t.batch_size;
+  j["steps"] = t.steps;
+  j["action_weight"] = t.action_weight;
+  j["beacon_weight"] = t.beacon_weight;
+  j["play_weight"] = t.play_weight;
+  j["restart_rule"] = t.restart_rule;
+  j["max_attempts"] = t.max_attempts;
+  j["restart_action_threshold"] = t.restart_action_threshold;
+  j["restart_beacon_threshold"] = t.restart_beacon_threshold;
+  j["seed"] = t.seed;
+  return j.dump();
+}
+
+std::string ToJson(const DataSpec& s) {
+  json j;
+  j["x_dim"] = s.x_dim;
+  j["y_shape"] = s.y_shape;
+  j["b_dim"] = s.b_dim;
+  j["u_dim"] = s.u_dim;
+  return j.dump();
+}
+
+NetworkConfig NetworkConfigFromJson(const std::string& text) {
+  const char* what = "network config";
+  const json j = Parse(text, what);
+  NetworkConfig n;
+  Read(j, "feature_dim", n.feature_dim, what);
+  Read(j, "conv_channels", n.conv_channels, what);
+  Read(j, "conv_kernel", n.conv_kernel, what);
+  Read(j, "cnn_hidden", n.cnn_hidden, what);
+  Read(j, "image_scale", n.image_scale, what);
+  Read(j, "feature_mlp_hidden", n.feature_mlp_hidden, what);
+  Read(j, "policy_hidden", n.policy_hidden, what);
+  Read(j, "beacon_hidden", n.beacon_hidden, what);
+  return n;
+}
+
+TrainConfig TrainConfigFromJson(const std::string& text) {
+  const char* what = "train config";
+  const json j = Parse(text, what);
+  TrainConfig t;
+  std::string method, loss;
+  Read(j, "method", method, what);
+  Read(j, "loss", loss, what);
+  t.method = ParseMethod(method);
+  t.loss = ParseLossKind(loss);
+  Read(j, "learning_rate", t.learning_rate, what);
+  Read(j, "batch_size", t.batch_size, what);
+  Read(j, "steps", t.steps, what);
+  Read(j, "action_weight", t.action_weight, what);
+  Read(j, "beacon_weight", t.beacon_weight, what);
+  Read(j, "play_weight", t.play_weight, what);
+  Read(j, "restart_rule", t.restart_rule, what);
+  Read(j, "max_attempts", t.max_attempts, what);
+  Read(j, "restart_action_threshold", t.restart_action_threshold, what);
+  Read(j, "restart_beacon_threshold", t.restart_beacon_threshold, what);
+  Read(j, "seed", t.seed, what);
+  return t;
+}
+
+DataSpec DataSpecFromJson(const std::string& text) {
+  const char* what = "data spec";
+  const json j = Parse(text, what);
+  DataSpec s;
+  Read(j, "x_dim", s.x_dim, what);
+  Read(j, "y_shape", s.y_shape, what);
+  Read(j, "b_dim", s.b_dim, what);
+  Read(j, "u_dim", s.u_dim, what);
+  return s;
+}
+
+}  // namespace recon::learn

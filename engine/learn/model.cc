@@ -1,0 +1,89 @@
+#include "engine/learn/model.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace recon::learn {
+
+void ModelBuffers::Resize(const Architecture& arch, int batch_size) {
+  batch = batch_size;
+  const size_t n = static_cast<size_t>(batch);
+  const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
+  x.assign(n * x_dim, 0.0f);
+  y.assign(n, nullptr);
+  if (arch.image()) {
+    convs.Resize(arch.convs, batch);
+  } else {
+    mlp_input.assign(n * arch.feature.front().in, 0.0f);
+  }
+  feature.Resize(arch.feature, batch);
+  policy.Resize(arch.policy, batch);
+  policy_input.assign(n * (x_dim + k), 0.0f);
+  grad_policy_input.assign(n * (x_dim + k), 0.0f);
+  if (arch.has_beacon_net()) beacon.Resize(arch.beacon, batch);
+  grad_beacon_input.assign(n * k, 0.0f);
+  grad_phi.assign(n * k, 0.0f);
+}
+
+void ForwardFeatures(const Architecture& arch, const float* params, ModelBuffers& buffers) {
+  if (arch.image()) {
+    ConvStackForward(arch.convs, params, buffers.y.data(), buffers.convs);
+    MlpForward(arch.feature, params, buffers.convs.output(), buffers.feature);
+    return;
+  }
+  const int x_dim = arch.spec.x_dim;
+  const int y_dim = static_cast<int>(arch.spec.YSize());
+  for (int b = 0; b < buffers.batch; ++b) {
+    float* row = buffers.mlp_input.data() + static_cast<size_t>(b) * (x_dim + y_dim);
+    std::copy_n(buffers.x.data() + static_cast<size_t>(b) * x_dim, x_dim, row);
+    std::copy_n(buffers.y[b], y_dim, row + x_dim);
+  }
+  MlpForward(arch.feature, params, buffers.mlp_input.data(), buffers.feature);
+}
+
+void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& buffers) {
+  const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
+  for (int b = 0; b < buffers.batch; ++b) {
+    float* row = buffers.policy_input.data() + static_cast<size_t>(b) * (x_dim + k);
+    std::copy_n(buffers.x.data() + static_cast<size_t>(b) * x_dim, x_dim, row);
+    std::copy_n(buffers.phi() + static_cast<size_t>(b) * k, k, row + x_dim);
+  }
+  MlpForward(arch.policy, params, buffers.policy_input.data(), buffers.policy);
+}
+
+void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& buffers) {
+  MlpForward(arch.beacon, params, buffers.phi(), buffers.beacon);
+}
+
+void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
+              const float* grad_beacon_head, ModelBuffers& buffers, float* grads) {
+  const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
+  std::fill(buffers.grad_phi.begin(), buffers.grad_phi.end(), 0.0f);
+  if (grad_policy_head != nullptr) {
+    MlpBackward(arch.policy, params, buffers.policy_input.data(), grad_policy_head, buffers.policy,
+                grads, buffers.grad_policy_input.data());
+    for (int b = 0; b < buffers.batch; ++b) {
+      const float* row =
+          buffers.grad_policy_input.data() + static_cast<size_t>(b) * (x_dim + k) + x_dim;
+      float* out = buffers.grad_phi.data() + static_cast<size_t>(b) * k;
+      for (int i = 0; i < k; ++i) out[i] += row[i];
+    }
+  }
+  if (grad_beacon_head != nullptr) {
+    MlpBackward(arch.beacon, params, buffers.phi(), grad_beacon_head, buffers.beacon, grads,
+                buffers.grad_beacon_input.data());
+    for (size_t i = 0; i < buffers.grad_phi.size(); ++i) {
+      buffers.grad_phi[i] += buffers.grad_beacon_input[i];
+    }
+  }
+  if (arch.image()) {
+    MlpBackward(arch.feature, params, buffers.convs.output(), buffers.grad_phi.data(),
+                buffers.feature, grads, buffers.convs.grad_output());
+    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads);
+  } else {
+    MlpBackward(arch.feature, params, buffers.mlp_input.data(), buffers.grad_phi.data(),
+                buffers.feature, grads, nullptr);
+  }
+}
+
+}  // namespace recon::learn

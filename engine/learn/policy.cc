@@ -1,0 +1,119 @@
+#include <algorithm>
+
+#include "engine/core/error.h"
+#include "engine/learn/learner.h"
+#include "engine/learn/policy_impl.h"
+
+namespace recon::learn {
+
+namespace {
+
+constexpr int kMaxChunk = 256;  // bounds the activation buffers of a large ActBatch
+
+void CheckSize(const std::vector<float>& v, int64_t expected, const char* name, size_t row) {
+  if (static_cast<int64_t>(v.size()) != expected) {
+    throw UserError(std::string("policy input ") + name + " (row " + std::to_string(row) +
+                    ") has " + std::to_string(v.size()) + " values, expected " +
+                    std::to_string(expected));
+  }
+}
+
+}  // namespace
+
+PolicyImpl::PolicyImpl(Architecture arch, const std::vector<float>& params)
+    : arch_(std::move(arch)), params_(params.begin(), params.end()) {}
+
+std::vector<std::vector<float>> PolicyImpl::Run(Output output,
+                                                const std::vector<std::vector<float>>& xs,
+                                                const std::vector<std::vector<float>>& ys) {
+  if (xs.size() != ys.size()) {
+    throw UserError("policy input: " + std::to_string(xs.size()) + " x rows but " +
+                    std::to_string(ys.size()) + " y rows");
+  }
+  for (size_t i = 0; i < xs.size(); ++i) {
+    CheckSize(xs[i], arch_.spec.x_dim, "x", i);
+    CheckSize(ys[i], arch_.spec.YSize(), "y", i);
+  }
+  std::vector<std::vector<float>> result(xs.size());
+  if (output == Output::kBeacon && !arch_.has_beacon_net()) return result;
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (size_t begin = 0; begin < xs.size(); begin += kMaxChunk) {
+    const int count = static_cast<int>(std::min<size_t>(kMaxChunk, xs.size() - begin));
+    RunChunk(output, xs, ys, begin, count, result);
+  }
+  return result;
+}
+
+void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& xs,
+                          const std::vector<std::vector<float>>& ys, size_t begin, int count,
+                          std::vector<std::vector<float>>& result) {
+  if (buffers_.batch != count) buffers_.Resize(arch_, count);
+  const int x_dim = arch_.spec.x_dim;
+  const int64_t y_size = arch_.spec.YSize();
+  const float scale = arch_.image() ? arch_.network.image_scale : 1.0f;
+  images_.resize(static_cast<size_t>(count) * y_size);
+  for (int b = 0; b < count; ++b) {
+    std::copy_n(xs[begin + b].data(), x_dim, buffers_.x.data() + static_cast<size_t>(b) * x_dim);
+    float* y = images_.data() + static_cast<size_t>(b) * y_size;
+    const std::vector<float>& source = ys[begin + b];
+    for (int64_t i = 0; i < y_size; ++i) y[i] = source[i] * scale;
+    buffers_.y[b] = y;
+  }
+  // Inference-only use of the training passes: no gradients are computed.
+  ForwardFeatures(arch_, params_.data(), buffers_);
+  const float* rows = buffers_.phi();
+  int stride = arch_.feature_dim(), width = arch_.feature_dim();
+  if (output == Output::kAction) {
+    ForwardPolicy(arch_, params_.data(), buffers_);
+    rows = buffers_.policy_head();
+    width = arch_.spec.u_dim;
+    stride = 2 * width;
+  } else if (output == Output::kBeacon) {
+    ForwardBeacon(arch_, params_.data(), buffers_);
+    rows = buffers_.beacon_head();
+    width = arch_.spec.b_dim;
+    stride = 2 * width;
+  }
+  for (int b = 0; b < count; ++b) {
+    const float* row = rows + static_cast<size_t>(b) * stride;
+    result[begin + b].assign(row, row + width);
+  }
+}
+
+Policy::Policy() = default;
+Policy::Policy(std::shared_ptr<PolicyImpl> impl) : impl_(std::move(impl)) {}
+Policy::~Policy() = default;
+Policy::Policy(const Policy&) = default;
+Policy& Policy::operator=(const Policy&) = default;
+
+namespace {
+
+PolicyImpl& Require(const std::shared_ptr<PolicyImpl>& impl) {
+  if (!impl) throw UserError("the policy is empty: train a model or load a checkpoint first");
+  return *impl;
+}
+
+}  // namespace
+
+const DataSpec& Policy::spec() const { return Require(impl_).arch().spec; }
+
+std::vector<float> Policy::Act(const std::vector<float>& x, const std::vector<float>& y) const {
+  return Require(impl_).Run(PolicyImpl::Output::kAction, {x}, {y}).front();
+}
+
+std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<float>>& xs,
+                                                 const std::vector<std::vector<float>>& ys) const {
+  return Require(impl_).Run(PolicyImpl::Output::kAction, xs, ys);
+}
+
+std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,
+                                         const std::vector<float>& y) const {
+  return Require(impl_).Run(PolicyImpl::Output::kBeacon, {x}, {y}).front();
+}
+
+std::vector<float> Policy::Features(const std::vector<float>& x,
+                                    const std::vector<float>& y) const {
+  return Require(impl_).Run(PolicyImpl::Output::kFeatures, {x}, {y}).front();
+}
+
+}  // namespace recon::learn

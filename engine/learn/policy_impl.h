@@ -1,0 +1,40 @@
+#pragma once
+
+// A Policy's shared state: the architecture and a private copy of the weights.
+
+#include <mutex>
+#include <vector>
+
+#include "engine/learn/aligned_buffer.h"
+#include "engine/learn/architecture.h"
+#include "engine/learn/model.h"
+
+namespace recon::learn {
+
+class PolicyImpl {
+ public:
+  PolicyImpl(Architecture arch, const std::vector<float>& params);
+
+  enum class Output { kAction, kBeacon, kFeatures };
+
+  /// One row of `output` per observation (action means, beacon means or features). Checks the
+  /// sizes of x and y (UserError). Serialised by a mutex: copies of a Policy share this object.
+  std::vector<std::vector<float>> Run(Output output, const std::vector<std::vector<float>>& xs,
+                                      const std::vector<std::vector<float>>& ys);
+
+  const Architecture& arch() const { return arch_; }
+  const AlignedFloats& params() const { return params_; }
+
+ private:
+  void RunChunk(Output output, const std::vector<std::vector<float>>& xs,
+                const std::vector<std::vector<float>>& ys, size_t begin, int count,
+                std::vector<std::vector<float>>& result);
+
+  const Architecture arch_;
+  const AlignedFloats params_;
+  std::mutex mutex_;
+  ModelBuffers buffers_;
+  AlignedFloats images_;
+};
+
+}  // namespace recon::learn

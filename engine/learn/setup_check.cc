@@ -1,0 +1,62 @@
+#include "engine/learn/setup_check.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "engine/core/error.h"
+
+namespace recon::learn {
+
+namespace {
+
+void CheckWeight(double weight, const char* name) {
+  if (!std::isfinite(weight) || weight < 0) {
+    std::ostringstream msg;
+    msg << "train config: " << name << " must be finite and >= 0 (got " << weight << ")";
+    throw UserError(msg.str());
+  }
+}
+
+}  // namespace
+
+void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
+                        const TrainConfig& train) {
+  if (train.steps <= 0) {
+    throw UserError("train config: steps must be positive (got " + std::to_string(train.steps) +
+                    ")");
+  }
+  if (train.batch_size <= 0) {
+    throw UserError("train config: batch_size must be positive (got " +
+                    std::to_string(train.batch_size) + ")");
+  }
+  if (!std::isfinite(train.learning_rate) || train.learning_rate <= 0) {
+    std::ostringstream msg;
+    msg << "train config: learning_rate must be positive (got " << train.learning_rate << ")";
+    throw UserError(msg.str());
+  }
+  CheckWeight(train.action_weight, "action_weight");
+  CheckWeight(train.beacon_weight, "beacon_weight");
+  CheckWeight(train.play_weight, "play_weight");
+  if (train.restart_rule && train.max_attempts < 1) {
+    throw UserError("train config: max_attempts must be at least 1 (got " +
+                    std::to_string(train.max_attempts) + ")");
+  }
+  ValidateDataset(data, "training data");
+  if (train.method == Method::kRecon) {
+    const int d = data.spec.b_dim, k = network.feature_dim;
+    if (d == 0) {
+      throw UserError(
+          "RECON needs beacon readings, but the data has none (beacon dimension d=0): place a "
+          "beacon before recording, or train the Baseline");
+    }
+    if (k <= d) {
+      throw UserError("feature size k=" + std::to_string(k) +
+                      " must exceed beacon dimension d=" + std::to_string(d) +
+                      " for RECON (the features must be able to hold more than the beacons): "
+                      "raise feature_dim to at least " +
+                      std::to_string(d + 1));
+    }
+  }
+}
+
+}  // namespace recon::learn

@@ -1,0 +1,49 @@
+#include "engine/learn/training_data.h"
+
+namespace recon::learn {
+
+namespace {
+
+template <typename Buffer>
+void Append(Buffer& out, const std::vector<float>& values, float scale = 1.0f) {
+  if (scale == 1.0f) {
+    out.insert(out.end(), values.begin(), values.end());
+  } else {
+    for (float v : values) out.push_back(v * scale);
+  }
+}
+
+}  // namespace
+
+TrainingData TrainingData::From(const Dataset& dataset, float image_scale) {
+  TrainingData t;
+  t.spec = dataset.spec;
+  t.y_size = dataset.spec.YSize();
+  t.num_demo = dataset.NumDemoSamples();
+  t.num_play = static_cast<int64_t>(dataset.play.size());
+  const float scale = dataset.spec.YIsImage() ? image_scale : 1.0f;
+  t.demo_x.reserve(t.num_demo * t.spec.x_dim);
+  t.demo_y.reserve(t.num_demo * t.y_size);
+  t.demo_b.reserve(t.num_demo * t.spec.b_dim);
+  t.demo_u.reserve(t.num_demo * t.spec.u_dim);
+  for (const Episode& episode : dataset.demos) {
+    for (const Sample& s : episode.samples) {
+      Append(t.demo_x, s.x);
+      Append(t.demo_y, s.y, scale);
+      Append(t.demo_b, s.b);
+      Append(t.demo_u, s.u);
+    }
+  }
+  t.play_x.reserve(t.num_play * t.spec.x_dim);
+  t.play_y.reserve(t.num_play * t.y_size);
+  t.play_b.reserve(t.num_play * t.spec.b_dim);
+  for (const PlaySample& p : dataset.play) {
+    Append(t.play_x, p.x);
+    Append(t.play_y, p.y, scale);
+    Append(t.play_b, p.b);
+  }
+  t.fingerprint = Fingerprint(dataset);
+  return t;
+}
+
+}  // namespace recon::learn

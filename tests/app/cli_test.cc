@@ -1,0 +1,117 @@
+// Runs the real `recon` binary as a user would and checks exit codes, messages and files.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout and stderr together
+};
+
+CommandResult RunRecon(const std::string& args) {
+  const std::string command = std::string(RECON_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("cli_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+// Tiny settings so an end-to-end run takes a few seconds.
+const char* kTiny = "--runs 2 --tests 10 --demos 3 --steps 40 --baseline-steps 30";
+
+TEST(CliTest, ShortExperimentWritesEverything) {
+  const fs::path out = FreshDir("short");
+  const CommandResult r = RunRecon(std::string("experiment dynamic2d ") + kTiny +
+                                   " --conditions baseline,exact --seed 5 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("seed 5"));
+  EXPECT_THAT(r.output, HasSubstr("exact"));
+  EXPECT_THAT(r.output, HasSubstr("wrote " + (out / "dynamic2d.png").string()));
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["conditions"]["exact"]["n"], 2);
+  EXPECT_EQ(summary["conditions"]["baseline"]["train_steps"], 30);
+  EXPECT_TRUE(fs::exists(out / "results.csv"));
+}
+
+TEST(CliTest, UnknownConditionIsAClearError) {
+  const fs::path out = FreshDir("unknown");
+  const CommandResult r = RunRecon(std::string("experiment dynamic2d ") + kTiny +
+                                   " --conditions baseline,exakt --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("unknown condition 'exakt'"));
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+}
+
+TEST(CliTest, ZeroDemosIsRejected) {
+  const CommandResult r =
+      RunRecon("experiment static2d --demos 0 --out " + FreshDir("zero").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--demos must be positive"));
+}
+
+TEST(CliTest, FeatureSizeNotAboveBeaconSizeIsRejected) {
+  const CommandResult r =
+      RunRecon(std::string("experiment dynamic2d ") + kTiny +
+               " --conditions exact+other --feature-dim 4 --out " + FreshDir("k").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("k=4"));
+}
+
+TEST(CliTest, UnwritableOutputFolderFailsBeforeTraining) {
+  const fs::path dir = FreshDir("unwritable");
+  fs::create_directories(dir);
+  std::ofstream(dir / "a_file") << "not a folder";
+  const CommandResult r = RunRecon(std::string("experiment dynamic2d ") + kTiny + " --out " +
+                                   (dir / "a_file" / "sub").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("a_file"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("training [")));
+}
+
+TEST(CliTest, ExistingResultsAreNotOverwrittenWithoutForce) {
+  const fs::path out = FreshDir("existing");
+  fs::create_directories(out);
+  std::ofstream(out / "summary.json") << "{\"precious\": true}\n";
+  const CommandResult r = RunRecon(std::string("experiment dynamic2d ") + kTiny +
+                                   " --conditions exact --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--force"));
+  std::ifstream in(out / "summary.json");
+  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(content, "{\"precious\": true}\n");
+}
+
+TEST(CliTest, UnknownFlagAndMissingSubcommandAreUsageErrors) {
+  EXPECT_EQ(RunRecon("experiment dynamic2d --no-such-flag").exit_code, 2);
+  EXPECT_EQ(RunRecon("").exit_code, 2);
+  EXPECT_EQ(RunRecon("experiment dynamic2d --runs abc").exit_code, 2);
+  const CommandResult help = RunRecon("experiment dynamic2d --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_THAT(help.output, HasSubstr("--conditions"));
+}
+
+}  // namespace

@@ -1,0 +1,185 @@
+// Checkpoints: exact round trips, exact resumption, and clear errors for files that do not fit.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <torch/torch.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "engine/core/error.h"
+#include "engine/learn/config_json.h"
+#include "engine/learn/learner.h"
+#include "tests/learn/test_data.h"
+
+namespace recon::learn {
+namespace {
+
+using testing::BitwiseEqual;
+using ::testing::HasSubstr;
+using testing::MakeImageTask;
+using testing::MakeVectorTask;
+using testing::Probe;
+using testing::SmallImageNet;
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::path(::testing::TempDir()) / ("recon_learn_" + name)).string();
+}
+
+TrainConfig ShortAuthors(int steps) {
+  TrainConfig t = AuthorsRecipe();
+  t.steps = steps;
+  t.restart_rule = false;
+  return t;
+}
+
+// The message of the UserError thrown by f ("" if none).
+template <typename F>
+std::string UserErrorOf(F f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+torch::Tensor ReadTensor(const std::string& path, const std::string& key) {
+  torch::serialize::InputArchive archive;
+  archive.load_from(path);
+  torch::Tensor t;
+  archive.read(key, t);
+  return t;
+}
+
+TEST(CheckpointTest, RoundTripGivesTheSamePolicy) {
+  const Dataset data = MakeImageTask(3, 24, 16, 6);
+  Trainer trainer(data, SmallImageNet(), ShortAuthors(30));
+  trainer.Train();
+  const std::string path = TempPath("roundtrip.ckpt");
+  trainer.SaveCheckpoint(path);
+  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  const Policy loaded = LoadPolicy(path);
+  EXPECT_EQ(loaded.spec(), data.spec);
+  EXPECT_TRUE(BitwiseEqual(Probe(loaded, data), Probe(trainer.policy(), data)));
+  const Sample& s = data.demos[0].samples[3];
+  EXPECT_TRUE(
+      BitwiseEqual(loaded.PredictBeacon(s.x, s.y), trainer.policy().PredictBeacon(s.x, s.y)));
+
+  const std::unique_ptr<Trainer> resumed = Trainer::Resume(path, data);
+  EXPECT_EQ(resumed->step(), 30);
+  EXPECT_EQ(resumed->network_config(), SmallImageNet());
+  EXPECT_EQ(resumed->train_config(), ShortAuthors(30));
+  EXPECT_TRUE(BitwiseEqual(Probe(resumed->policy(), data), Probe(trainer.policy(), data)));
+}
+
+TEST(CheckpointTest, ResumeContinuesExactly) {
+  // Image model with play data and sampling noise: every piece of state matters.
+  const Dataset data = MakeImageTask(4, 24, 16, 6);
+  const int steps = 40;
+  Trainer straight(data, SmallImageNet(), ShortAuthors(steps));
+  straight.Train();
+  const std::string straight_path = TempPath("straight.ckpt");
+  straight.SaveCheckpoint(straight_path);
+
+  Trainer first_half(data, SmallImageNet(), ShortAuthors(steps));
+  std::atomic<bool> cancel{false};
+  first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step + 1 == steps / 2; });
+  ASSERT_TRUE(first_half.Train(&cancel).cancelled);
+  ASSERT_EQ(first_half.step(), steps / 2);
+  const std::string half_path = TempPath("half.ckpt");
+  first_half.SaveCheckpoint(half_path);
+
+  const std::unique_ptr<Trainer> resumed = Trainer::Resume(half_path, data);
+  EXPECT_EQ(resumed->step(), steps / 2);
+  const TrainResult result = resumed->Train();
+  EXPECT_EQ(result.steps_run, steps);
+  const std::string resumed_path = TempPath("resumed.ckpt");
+  resumed->SaveCheckpoint(resumed_path);
+  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+    EXPECT_TRUE(torch::equal(ReadTensor(straight_path, key), ReadTensor(resumed_path, key))) << key;
+  }
+  EXPECT_TRUE(BitwiseEqual(Probe(resumed->policy(), data), Probe(straight.policy(), data)));
+}
+
+TEST(CheckpointTest, ResumeRejectsOtherData) {
+  const Dataset data = MakeVectorTask(1, 5);
+  Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));
+  trainer.Train();
+  const std::string path = TempPath("data.ckpt");
+  trainer.SaveCheckpoint(path);
+
+  Dataset changed = data;
+  changed.demos[2].samples[1].u[0] += 0.25f;
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(path, changed); }), HasSubstr("fingerprint"));
+  const Dataset other_shape = MakeImageTask(1, 4, 16);
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(path, other_shape); }),
+              HasSubstr("trained on data shaped"));
+  EXPECT_EQ(UserErrorOf([&] { Trainer::Resume(path, data); }), "");
+}
+
+TEST(CheckpointTest, MissingCorruptOrTruncatedFilesAreUserErrors) {
+  const Dataset data = MakeVectorTask(1, 5);
+  Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));
+  const std::string good = TempPath("good.ckpt");
+  trainer.SaveCheckpoint(good);
+
+  const std::string missing = TempPath("missing.ckpt");
+  std::filesystem::remove(missing);
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(missing); }), HasSubstr("does not exist"));
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(missing, data); }), HasSubstr("does not exist"));
+
+  const std::string garbage = TempPath("garbage.ckpt");
+  std::ofstream(garbage) << "this is not a checkpoint";
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(garbage); }), HasSubstr("corrupt"));
+
+  const std::string truncated = TempPath("truncated.ckpt");
+  std::filesystem::copy_file(good, truncated, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::resize_file(truncated, std::filesystem::file_size(good) / 2);
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(truncated, data); }), HasSubstr(truncated));
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(truncated); }), HasSubstr(truncated));
+
+  // A valid PyTorch archive that is not ours.
+  const std::string foreign = TempPath("foreign.ckpt");
+  torch::serialize::OutputArchive archive;
+  archive.write("weights", torch::ones({3}));
+  archive.save_to(foreign);
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(foreign); }), HasSubstr("missing"));
+
+  EXPECT_THAT(UserErrorOf([&] { trainer.SaveCheckpoint(TempPath("no/such/dir.ckpt")); }),
+              HasSubstr("cannot write checkpoint"));
+}
+
+TEST(CheckpointTest, ArchitectureMismatchIsAUserError) {
+  const Dataset data = MakeVectorTask(1, 5);
+  Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));
+  const std::string good = TempPath("arch.ckpt");
+  trainer.SaveCheckpoint(good);
+
+  // Rewrite the checkpoint with a configuration that describes other networks.
+  torch::serialize::InputArchive in;
+  in.load_from(good);
+  torch::serialize::OutputArchive out;
+  for (const char* key : {"format", "train", "spec", "state"}) {
+    c10::IValue value;
+    ASSERT_TRUE(in.try_read(key, value));
+    out.write(key, value);
+  }
+  c10::IValue network;
+  ASSERT_TRUE(in.try_read("network", network));
+  NetworkConfig other = NetworkConfigFromJson(network.toStringRef());
+  other.policy_hidden = {16};
+  out.write("network", c10::IValue(ToJson(other)));
+  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+    torch::Tensor t;
+    in.read(key, t);
+    out.write(key, t);
+  }
+  const std::string bad = TempPath("arch_bad.ckpt");
+  out.save_to(bad);
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(bad, data); }), HasSubstr("architecture differs"));
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(bad); }), HasSubstr("architecture differs"));
+}
+
+}  // namespace
+}  // namespace recon::learn
