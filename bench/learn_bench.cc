@@ -4,6 +4,7 @@
 //
 //   ninja -C build/release learn_bench && build/release/bench/learn_bench
 //
+// BM_TrainStepTorchBackend is BM_TrainStepDynamic2DExact trained through LibTorch autograd.
 // The *_Kernels/<name> variants run the same step on each kernel table the CPU supports; the
 // threads:2 variant runs two trainers at once (one per core, as experiment sweeps do).
 // The images are synthetic but shaped like the world's (background uniform integers in
@@ -107,6 +108,14 @@ void BM_TrainStepDynamic2DExact(benchmark::State& state) {
   RunSteps(state, WithoutPlay(), Authors(Method::kRecon));
 }
 
+// The same step with Backend::kTorch: LibTorch operators and autograd instead of our kernels
+// (the straight LibTorch port); batch, noise and Adam update are the same.
+void BM_TrainStepTorchBackend(benchmark::State& state) {
+  TrainConfig train = Authors(Method::kRecon);
+  train.backend = Backend::kTorch;
+  RunSteps(state, WithoutPlay(), train);
+}
+
 void BM_TrainStepDynamic2DExactPlay(benchmark::State& state) {
   RunSteps(state, BenchData(), Authors(Method::kRecon));
 }
@@ -148,6 +157,7 @@ void BM_TrainStepKernels(benchmark::State& state, std::string name) {
 }
 
 BENCHMARK(BM_TrainStepDynamic2DExact)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TrainStepTorchBackend)->Unit(benchmark::kMillisecond);
 // Two trainers at once, one per core, as in experiment sweeps: the time is wall-clock per step of
 // the pair, items_per_second the total steps per second.
 BENCHMARK(BM_TrainStepTwoTrainersAtOnce)->Unit(benchmark::kMillisecond)->Threads(2)->UseRealTime();

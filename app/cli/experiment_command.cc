@@ -35,12 +35,14 @@ struct ExperimentFlags {
   bool force = false;
   int jobs = 0;
   std::string loss = "nll";
+  std::string backend = "fused";
   double learning_rate = 4e-4;
   int steps = 6001;
   int baseline_steps = 3001;
   int batch = 20;
   int feature_dim = 6;
-  bool restart = false;
+  int play = -1;
+  bool restart = true;
   bool authors_compat = false;
   bool authors_recipe = false;
 };
@@ -81,7 +83,9 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     config.train.batch_size = flags.batch;
     config.train.restart_rule = flags.restart;
   }
+  config.train.backend = learn::ParseBackend(flags.backend);
   config.baseline_steps = flags.baseline_steps;
+  config.play_per_scenario = flags.play;
   return config;
 }
 
@@ -166,15 +170,25 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command->add_option("--jobs", flags->jobs, "runs trained in parallel (default: cores)");
   command->add_option("--loss", flags->loss, "nll (paper) or mse-sample (authors' code)")
       ->capture_default_str();
+  command
+      ->add_option("--backend", flags->backend,
+                   "fused (our kernels, checked against LibTorch autograd) or torch (LibTorch "
+                   "operators and autograd; about 3x slower)")
+      ->capture_default_str();
   command->add_option("--lr", flags->learning_rate, "Adam learning rate")->capture_default_str();
   command->add_option("--steps", flags->steps, "training steps with beacons")
       ->capture_default_str();
   command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")
       ->capture_default_str();
   command->add_option("--batch", flags->batch, "batch size")->capture_default_str();
+  command->add_option("--play", flags->play,
+                      "play samples per demonstration scenario for play conditions (default: "
+                      "the world's recipe, 3)");
   command->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
       ->capture_default_str();
-  command->add_flag("--restart", flags->restart, "the authors' retrain-on-bad-loss rule");
+  command->add_flag("--restart,!--no-restart", flags->restart,
+                    "retrain a run from a new seed stream when its final training error is bad "
+                    "(the authors' rule; on by default)");
   command->add_flag("--authors-recipe", flags->authors_recipe,
                     "the authors' exact recipe: mse-sample loss, weights 1/1.2/1.2, restarts");
   command->callback([flags, command, &global] { Run(*flags, *command, global); });

@@ -42,6 +42,7 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
   if (config.runs <= 0) throw UserError("--runs must be positive");
   if (config.tests <= 0) throw UserError("--tests must be positive");
   if (config.jobs <= 0) throw UserError("--jobs must be positive");
+  if (config.play_per_scenario < -1) throw UserError("--play must not be negative");
   if (config.train.steps <= 0 || config.baseline_steps <= 0) {
     throw UserError("--steps and --baseline-steps must be positive");
   }
@@ -89,7 +90,9 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   for (int i = 0; i < task.demos; ++i) {
     scenario_seeds.push_back(DemoScenarioSeed(config.seed, task.run, i));
   }
-  const int play = condition.use_play ? world->PlaySamplesPerScenario() : 0;
+  const int play_recipe =
+      config.play_per_scenario >= 0 ? config.play_per_scenario : world->PlaySamplesPerScenario();
+  const int play = condition.use_play ? play_recipe : 0;
   const Dataset data = worlds::RecordDemonstrations(*world, scenario_seeds, play);
 
   learn::TrainConfig train = config.train;

@@ -25,6 +25,9 @@ struct ExperimentConfig {
   learn::NetworkConfig network;
   learn::TrainConfig train;   ///< method, seed and steps are set per condition and run
   int baseline_steps = 3001;  ///< the authors train the Baseline for half as long
+  /// Play samples recorded per demonstration scenario for conditions that use play; -1 takes
+  /// the world's own recipe (World::PlaySamplesPerScenario).
+  int play_per_scenario = -1;
 };
 
 /// The outcome of one training run of one condition.

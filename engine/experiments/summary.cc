@@ -57,13 +57,16 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
   json conditions = by_demos[std::to_string(config.demos.front())]["conditions"];
   json train = {
       {"loss", learn::ToString(config.train.loss)},
+      {"backend", learn::ToString(config.train.backend)},
       {"learning_rate", config.train.learning_rate},
       {"batch_size", config.train.batch_size},
       {"steps", config.train.steps},
       {"baseline_steps", config.baseline_steps},
       {"weights",
        {config.train.action_weight, config.train.beacon_weight, config.train.play_weight}},
-      {"restart_rule", config.train.restart_rule}};
+      {"restart_rule", config.train.restart_rule},
+      {"standardize_targets", config.train.standardize_targets},
+      {"play_per_scenario", config.play_per_scenario}};
   json seeds = {{"seed", config.seed},
                 {"demo_scenarios", "DemoScenarioSeed(seed, run, index)"},
                 {"training", "TrainSeed(seed, run)"},
@@ -89,8 +92,15 @@ std::string Subtitle(const ExperimentConfig& config, const ExperimentResult& res
   std::ostringstream s;
   s << config.runs << " runs per bar (mean \xC2\xB1 standard error), " << demos << " demos, "
     << config.tests << " test scenarios, seed " << config.seed << ", "
-    << learn::ToString(config.train.loss) << " loss";
+    << learn::ToString(config.train.loss) << " loss; "
+    << (result.higher_is_better ? "higher" : "lower") << " is better";
   return s.str();
+}
+
+// The metric's name without its parenthetical (which says higher or lower is better; the
+// subtitle says that), so it fits along the y axis.
+std::string AxisLabel(const std::string& metric_name) {
+  return metric_name.substr(0, metric_name.find(" ("));
 }
 
 std::string Title(const ExperimentConfig& config) {
@@ -147,7 +157,7 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
   report::BarChart bars;
   bars.title = Title(config);
   bars.subtitle = Subtitle(config, result, config.demos.front());
-  bars.y_label = result.metric_name;
+  bars.y_label = AxisLabel(result.metric_name);
   for (const ConditionSummary& s : summaries) {
     if (s.demos != config.demos.front()) continue;
     bars.labels.push_back(s.label);
@@ -167,7 +177,7 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
     curve.title = Title(config) + ": data efficiency";
     curve.subtitle = std::to_string(config.runs) + " runs per point (mean \xC2\xB1 standard error)";
     curve.x_label = "demonstrations";
-    curve.y_label = result.metric_name;
+    curve.y_label = AxisLabel(result.metric_name);
     for (size_t c = 0; c < config.conditions.size(); ++c) {
       report::LineChart::Series series;
       series.name = config.conditions[c].label;

@@ -1,6 +1,6 @@
 // Checkpoints: one PyTorch archive (zip) per file holding the weights and Adam moments as
-// tensors, and the configurations, data shape and trainer state as JSON strings. The only
-// translation unit of the learner that includes Torch.
+// tensors, and the configurations, data shape and trainer state as JSON strings. The only other
+// translation units of the learner that include Torch are this, threads.cc and torch_step.cc.
 
 #include <torch/serialize/input-archive.h>
 #include <torch/serialize/output-archive.h>
@@ -33,6 +33,7 @@ struct CheckpointContents {
   DataSpec spec;
   uint64_t fingerprint = 0;
   TrainerState state;
+  std::vector<float> scaling;  ///< TargetScaling::Flatten()
 };
 
 json RngToJson(const Rng::State& s) {
@@ -132,6 +133,8 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
     at::Tensor tensor;
     archive.read("params", tensor);
     c.state.params = FromTensor(tensor, "params");
+    archive.read("target_scaling", tensor);
+    c.scaling = FromTensor(tensor, "target_scaling");
     if (with_optimizer) {
       archive.read("exp_avg", tensor);
       c.state.exp_avg = FromTensor(tensor, "exp_avg");
@@ -160,6 +163,7 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
     archive.write("spec", c10::IValue(ToJson(impl_->arch().spec)));
     archive.write("state", c10::IValue(StateToJson(s, impl_->fingerprint())));
     archive.write("params", ToTensor(s.params));
+    archive.write("target_scaling", ToTensor(impl_->scaling().Flatten()));
     archive.write("exp_avg", ToTensor(s.exp_avg));
     archive.write("exp_avg_sq", ToTensor(s.exp_avg_sq));
     archive.save_to(temp);
@@ -172,8 +176,11 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
   }
 }
 
-std::unique_ptr<Trainer> Trainer::Resume(const std::string& path, const Dataset& data) {
+std::unique_ptr<Trainer> Trainer::Resume(const std::string& path, const Dataset& data,
+                                         std::optional<Backend> backend) {
   CheckpointContents c = ReadCheckpoint(path, /*with_optimizer=*/true);
+  // Both backends continue the same state, so switching is only a setting.
+  if (backend.has_value()) c.train.backend = *backend;
   if (!(c.spec == data.spec)) {
     throw UserError("checkpoint '" + path + "' was trained on data shaped (" + c.spec.ToString() +
                     ") but this data is (" + data.spec.ToString() + ")");
@@ -198,8 +205,10 @@ std::unique_ptr<Trainer> Trainer::Resume(const std::string& path, const Dataset&
 Policy LoadPolicy(const std::string& checkpoint_path) {
   CheckpointContents c = ReadCheckpoint(checkpoint_path, /*with_optimizer=*/false);
   Architecture arch;
+  TargetScaling scaling;
   try {
     arch = BuildArchitecture(c.spec, c.network, c.train.method);
+    scaling = TargetScaling::Unflatten(c.spec, c.scaling);
   } catch (const UserError& e) {
     throw UserError("checkpoint '" + checkpoint_path + "': " + e.what());
   }
@@ -209,7 +218,7 @@ Policy LoadPolicy(const std::string& checkpoint_path) {
                     " parameters but its configuration describes " +
                     std::to_string(arch.num_params) + ": the architecture differs");
   }
-  return Policy(std::make_shared<PolicyImpl>(std::move(arch), c.state.params));
+  return Policy(std::make_shared<PolicyImpl>(std::move(arch), c.state.params, std::move(scaling)));
 }
 
 }  // namespace recon::learn

@@ -17,9 +17,17 @@ LossKind ParseLossKind(const std::string& name) {
   throw UserError("unknown loss '" + name + "' (expected nll or mse-sample)");
 }
 
+Backend ParseBackend(const std::string& name) {
+  if (name == "fused") return Backend::kFused;
+  if (name == "torch") return Backend::kTorch;
+  throw UserError("unknown backend '" + name + "' (expected fused or torch)");
+}
+
 std::string ToString(Method method) { return method == Method::kRecon ? "recon" : "baseline"; }
 
 std::string ToString(LossKind loss) { return loss == LossKind::kNll ? "nll" : "mse-sample"; }
+
+std::string ToString(Backend backend) { return backend == Backend::kFused ? "fused" : "torch"; }
 
 TrainConfig AuthorsRecipe() {
   TrainConfig config;
@@ -31,6 +39,7 @@ TrainConfig AuthorsRecipe() {
   config.beacon_weight = 1.2;
   config.play_weight = 1.2;
   config.restart_rule = true;
+  config.standardize_targets = false;
   return config;
 }
 

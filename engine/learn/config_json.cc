@@ -54,10 +54,12 @@ std::string ToJson(const TrainConfig& t) {
   j["beacon_weight"] = t.beacon_weight;
   j["play_weight"] = t.play_weight;
   j["restart_rule"] = t.restart_rule;
+  j["standardize_targets"] = t.standardize_targets;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
   j["restart_beacon_threshold"] = t.restart_beacon_threshold;
   j["seed"] = t.seed;
+  j["backend"] = ToString(t.backend);
   return j.dump();
 }
 
@@ -101,10 +103,17 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   Read(j, "beacon_weight", t.beacon_weight, what);
   Read(j, "play_weight", t.play_weight, what);
   Read(j, "restart_rule", t.restart_rule, what);
+  Read(j, "standardize_targets", t.standardize_targets, what);
   Read(j, "max_attempts", t.max_attempts, what);
   Read(j, "restart_action_threshold", t.restart_action_threshold, what);
   Read(j, "restart_beacon_threshold", t.restart_beacon_threshold, what);
   Read(j, "seed", t.seed, what);
+  // Checkpoints from before the Torch backend have no such field: they trained on our kernels.
+  if (j.contains("backend")) {
+    std::string backend;
+    Read(j, "backend", backend, what);
+    t.backend = ParseBackend(backend);
+  }
   return t;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,10 +28,22 @@ enum class LossKind {
   kMseSample,  ///< the authors' code: MSE of a reparameterised sample (mean + std * noise)
 };
 
+/// What computes each training step's gradient. Both train the same model from the same state
+/// (weights, Adam moments, generators), so checkpoints and results are interchangeable; they
+/// differ only in rounding.
+enum class Backend {
+  kFused,  ///< our own kernels (kernels.h): the default and the fastest
+  /// LibTorch operators and autograd, for users who want to train with Torch and compare; about
+  /// 3x slower per step. Deterministic per seed on one thread (SetThreads(1), the default).
+  kTorch,
+};
+
 Method ParseMethod(const std::string& name);      ///< "recon" | "baseline"; UserError otherwise
 LossKind ParseLossKind(const std::string& name);  ///< "nll" | "mse-sample"; UserError otherwise
+Backend ParseBackend(const std::string& name);    ///< "fused" | "torch"; UserError otherwise
 std::string ToString(Method method);
 std::string ToString(LossKind loss);
+std::string ToString(Backend backend);
 
 /// Architecture. The defaults are the authors' networks for 3x32x32 images (REFERENCE.md 2).
 struct NetworkConfig {
@@ -71,11 +84,19 @@ struct TrainConfig {
   /// exceeds restart_action_threshold or the beacon + play error exceeds
   /// restart_beacon_threshold. Judged on the mean squared error of the heads' mean predictions
   /// over the whole training set, so the rule means the same under either loss kind.
+  /// Train on standardised targets (u and b shifted and scaled to zero mean and unit spread per
+  /// dimension, fitted on the training data and stored with the model; outputs are mapped back).
+  /// Keeps the NLL from stalling on large targets (target_scaling.h). Losses and the restart
+  /// rule's errors are then in standardised units. The authors' recipe trains on raw targets.
+  bool standardize_targets = true;
   bool restart_rule = false;
   int max_attempts = 5;
   double restart_action_threshold = 0.1;
   double restart_beacon_threshold = 1.0;
   uint64_t seed = 0;
+  /// Only the gradient's computation differs (see Backend); a checkpoint written before this
+  /// setting existed reads as kFused.
+  Backend backend = Backend::kFused;
 
   bool operator==(const TrainConfig& other) const = default;
 };
@@ -170,7 +191,9 @@ class Trainer {
   void SaveCheckpoint(const std::string& path) const;
   /// Reopens a checkpoint to continue training on `data`. UserError if the file is missing or
   /// corrupt, or the data's fingerprint or shapes differ from those it was trained on.
-  static std::unique_ptr<Trainer> Resume(const std::string& path, const Dataset& data);
+  /// `backend`, if given, replaces the stored one: either backend continues any checkpoint.
+  static std::unique_ptr<Trainer> Resume(const std::string& path, const Dataset& data,
+                                         std::optional<Backend> backend = std::nullopt);
 
   const NetworkConfig& network_config() const;
   const TrainConfig& train_config() const;

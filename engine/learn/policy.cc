@@ -20,8 +20,8 @@ void CheckSize(const std::vector<float>& v, int64_t expected, const char* name, 
 
 }  // namespace
 
-PolicyImpl::PolicyImpl(Architecture arch, const std::vector<float>& params)
-    : arch_(std::move(arch)), params_(params.begin(), params.end()) {}
+PolicyImpl::PolicyImpl(Architecture arch, const std::vector<float>& params, TargetScaling scaling)
+    : arch_(std::move(arch)), params_(params.begin(), params.end()), scaling_(std::move(scaling)) {}
 
 std::vector<std::vector<float>> PolicyImpl::Run(Output output,
                                                 const std::vector<std::vector<float>>& xs,
@@ -65,14 +65,16 @@ void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& 
   int stride = arch_.feature_dim(), width = arch_.feature_dim();
   if (output == Output::kAction) {
     ForwardPolicy(arch_, params_.data(), buffers_);
-    rows = buffers_.policy_head();
     width = arch_.spec.u_dim;
     stride = 2 * width;
+    scaling_.RestoreActions(buffers_.policy.out.back().data(), count, stride);
+    rows = buffers_.policy_head();
   } else if (output == Output::kBeacon) {
     ForwardBeacon(arch_, params_.data(), buffers_);
-    rows = buffers_.beacon_head();
     width = arch_.spec.b_dim;
     stride = 2 * width;
+    scaling_.RestoreBeacons(buffers_.beacon.out.back().data(), count, stride);
+    rows = buffers_.beacon_head();
   }
   for (int b = 0; b < count; ++b) {
     const float* row = rows + static_cast<size_t>(b) * stride;

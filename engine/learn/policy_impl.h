@@ -8,12 +8,13 @@
 #include "engine/learn/aligned_buffer.h"
 #include "engine/learn/architecture.h"
 #include "engine/learn/model.h"
+#include "engine/learn/target_scaling.h"
 
 namespace recon::learn {
 
 class PolicyImpl {
  public:
-  PolicyImpl(Architecture arch, const std::vector<float>& params);
+  PolicyImpl(Architecture arch, const std::vector<float>& params, TargetScaling scaling);
 
   enum class Output { kAction, kBeacon, kFeatures };
 
@@ -24,6 +25,7 @@ class PolicyImpl {
 
   const Architecture& arch() const { return arch_; }
   const AlignedFloats& params() const { return params_; }
+  const TargetScaling& scaling() const { return scaling_; }
 
  private:
   void RunChunk(Output output, const std::vector<std::vector<float>>& xs,
@@ -32,6 +34,7 @@ class PolicyImpl {
 
   const Architecture arch_;
   const AlignedFloats params_;
+  const TargetScaling scaling_;  ///< maps head means back to the units the data was recorded in
   std::mutex mutex_;
   ModelBuffers buffers_;
   AlignedFloats images_;

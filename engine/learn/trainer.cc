@@ -38,6 +38,9 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
   CheckTrainingSetup(data, network, train);
   arch_ = BuildArchitecture(data.spec, network, train.method);
   data_ = TrainingData::From(data, network.image_scale);
+  scaling_ =
+      train.standardize_targets ? TargetScaling::Fit(data_) : TargetScaling::Identity(data.spec);
+  scaling_.Apply(data_);
   const size_t n = static_cast<size_t>(arch_.num_params);
   params_.assign(n, 0.0f);
   grads_.assign(n, 0.0f);
@@ -61,6 +64,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     noise_play_.assign(target_b_.size(), 0.0f);
     grad_play_head_.assign(grad_beacon_head_.size(), 0.0f);
   }
+  if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
   StartAttempt(0);
 }
 
@@ -107,29 +111,20 @@ void TrainerImpl::GatherBatch() {
   }
 }
 
-void TrainerImpl::Step() {
-  // Everything that can fail is done before the first write to the trainer's state, so that a
-  // DivergenceError leaves weights, optimizer and generators as they were before the step.
-  const Rng::State batch_before = batch_rng_.GetState(), noise_before = noise_rng_.GetState();
-  GatherBatch();
+void TrainerImpl::FusedForward(StepMetrics& m) {
   const float* params = params_.data();
   const int batch = train_.batch_size;
   const DataSpec& s = data_.spec;
   ForwardFeatures(arch_, params, demo_);
   ForwardPolicy(arch_, params, demo_);
-  StepMetrics m;
-  m.attempt = attempt_;
-  m.step = step_;
   m.action_loss =
       HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(), batch, s.u_dim,
                static_cast<float>(train_.action_weight), grad_policy_head_.data());
-  double total = train_.action_weight * m.action_loss;
   if (arch_.has_beacon_net()) {
     ForwardBeacon(arch_, params, demo_);
     m.beacon_loss =
         HeadLoss(train_.loss, demo_.beacon_head(), target_b_.data(), noise_b_.data(), batch,
                  s.b_dim, static_cast<float>(train_.beacon_weight), grad_beacon_head_.data());
-    total += train_.beacon_weight * m.beacon_loss;
   }
   if (UsesPlay()) {
     ForwardFeatures(arch_, params, play_);
@@ -137,8 +132,49 @@ void TrainerImpl::Step() {
     m.play_loss =
         HeadLoss(train_.loss, play_.beacon_head(), target_play_.data(), noise_play_.data(), batch,
                  s.b_dim, static_cast<float>(train_.play_weight), grad_play_head_.data());
-    total += train_.play_weight * m.play_loss;
   }
+}
+
+void TrainerImpl::FusedBackward() {
+  const float* params = params_.data();
+  Backward(arch_, params, grad_policy_head_.data(),
+           arch_.has_beacon_net() ? grad_beacon_head_.data() : nullptr, demo_, grads_.data());
+  if (UsesPlay()) {
+    Backward(arch_, params, nullptr, grad_play_head_.data(), play_, grads_.data());
+  }
+}
+
+TorchBatch TrainerImpl::MakeTorchBatch() const {
+  TorchBatch b;
+  b.demo = &demo_;
+  b.play = UsesPlay() ? &play_ : nullptr;
+  b.target_u = target_u_.data();
+  b.target_b = target_b_.data();
+  b.target_play = target_play_.data();
+  b.noise_u = noise_u_.data();
+  b.noise_b = noise_b_.data();
+  b.noise_play = noise_play_.data();
+  return b;
+}
+
+void TrainerImpl::Step() {
+  // Everything that can fail is done before the first write to the trainer's state, so that a
+  // DivergenceError leaves weights, optimizer and generators as they were before the step.
+  const Rng::State batch_before = batch_rng_.GetState(), noise_before = noise_rng_.GetState();
+  GatherBatch();
+  StepMetrics m;
+  m.attempt = attempt_;
+  m.step = step_;
+  // --- Backend: forward pass and losses (terms that are off stay 0) ---
+  if (torch_ != nullptr) {
+    torch_->Forward(params_.data(), MakeTorchBatch(), m);
+  } else {
+    FusedForward(m);
+  }
+  // --- end backend ---
+  double total = train_.action_weight * m.action_loss;
+  if (arch_.has_beacon_net()) total += train_.beacon_weight * m.beacon_loss;
+  if (UsesPlay()) total += train_.play_weight * m.play_loss;
   m.total_loss = static_cast<float>(total);
 
   auto diverged = [&](const std::string& what) {
@@ -153,11 +189,13 @@ void TrainerImpl::Step() {
   if (!std::isfinite(m.total_loss)) diverged("the loss is not finite");
 
   std::fill(grads_.begin(), grads_.end(), 0.0f);
-  Backward(arch_, params, grad_policy_head_.data(),
-           arch_.has_beacon_net() ? grad_beacon_head_.data() : nullptr, demo_, grads_.data());
-  if (UsesPlay()) {
-    Backward(arch_, params, nullptr, grad_play_head_.data(), play_, grads_.data());
+  // --- Backend: gradient of the weighted loss into grads_ ---
+  if (torch_ != nullptr) {
+    torch_->Backward(grads_.data());
+  } else {
+    FusedBackward();
   }
+  // --- end backend ---
   const kernels::KernelTable& k = kernels::Kernels();
   if (!k.all_finite(grads_.data(), static_cast<int64_t>(grads_.size()))) {
     diverged("a gradient is not finite");
@@ -301,7 +339,8 @@ void TrainerImpl::SetState(const TrainerState& s) {
 }
 
 std::shared_ptr<PolicyImpl> TrainerImpl::MakePolicy() const {
-  return std::make_shared<PolicyImpl>(arch_, std::vector<float>(params_.begin(), params_.end()));
+  return std::make_shared<PolicyImpl>(arch_, std::vector<float>(params_.begin(), params_.end()),
+                                      scaling_);
 }
 
 // --- Trainer ------------------------------------------------------------------------------------

@@ -12,6 +12,8 @@
 #include "engine/learn/architecture.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/model.h"
+#include "engine/learn/target_scaling.h"
+#include "engine/learn/torch_step.h"
 #include "engine/learn/training_data.h"
 
 namespace recon::learn {
@@ -57,6 +59,7 @@ class TrainerImpl {
   const TrainConfig& train() const { return train_; }
   const Architecture& arch() const { return arch_; }
   uint64_t fingerprint() const { return data_.fingerprint; }
+  const TargetScaling& scaling() const { return scaling_; }
   int step() const { return step_; }
   void set_observer(std::function<void(const StepMetrics&)> observer) {
     observer_ = std::move(observer);
@@ -67,11 +70,17 @@ class TrainerImpl {
   bool UsesPlay() const;
   bool NeedsRestart();
   void GatherBatch();
+  // The backend-specific half of Step: the unweighted losses into `m`, then dLoss/dparams
+  // added into grads_ (zeroed by the caller).
+  void FusedForward(StepMetrics& m);
+  void FusedBackward();
+  TorchBatch MakeTorchBatch() const;
 
   NetworkConfig network_;
   TrainConfig train_;
   Architecture arch_;
-  TrainingData data_;
+  TrainingData data_;  ///< targets in standardised units when train_.standardize_targets
+  TargetScaling scaling_;
   std::function<void(const StepMetrics&)> observer_;
 
   int attempt_ = 0;
@@ -88,6 +97,7 @@ class TrainerImpl {
   std::vector<float> target_u_, target_b_, target_play_;
   std::vector<float> noise_u_, noise_b_, noise_play_;
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
+  std::unique_ptr<TorchStep> torch_;  ///< Backend::kTorch only
 };
 
 }  // namespace recon::learn

@@ -73,6 +73,26 @@ TEST(CliTest, ZeroDemosIsRejected) {
   EXPECT_THAT(r.output, HasSubstr("--demos must be positive"));
 }
 
+TEST(CliTest, TorchBackendRunsAndUnknownBackendIsRejected) {
+  const fs::path out = FreshDir("torch");
+  const CommandResult r = RunRecon(std::string("experiment dynamic2d ") + kTiny +
+                                   " --conditions exact --backend torch --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["train"]["backend"], "torch");
+  const CommandResult bad = RunRecon(std::string("experiment dynamic2d ") + kTiny +
+                                     " --backend tensorflow --out " + FreshDir("tf").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.output, HasSubstr("unknown backend 'tensorflow'"));
+}
+
+TEST(CliTest, NegativePlayIsRejected) {
+  const CommandResult r =
+      RunRecon("experiment static2d --play -3 --out " + FreshDir("play").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--play must not be negative"));
+}
+
 TEST(CliTest, FeatureSizeNotAboveBeaconSizeIsRejected) {
   const CommandResult r =
       RunRecon(std::string("experiment dynamic2d ") + kTiny +

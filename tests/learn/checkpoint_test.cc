@@ -96,7 +96,7 @@ TEST(CheckpointTest, ResumeContinuesExactly) {
   EXPECT_EQ(result.steps_run, steps);
   const std::string resumed_path = TempPath("resumed.ckpt");
   resumed->SaveCheckpoint(resumed_path);
-  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+  for (const char* key : {"params", "target_scaling", "exp_avg", "exp_avg_sq"}) {
     EXPECT_TRUE(torch::equal(ReadTensor(straight_path, key), ReadTensor(resumed_path, key))) << key;
   }
   EXPECT_TRUE(BitwiseEqual(Probe(resumed->policy(), data), Probe(straight.policy(), data)));
@@ -170,7 +170,7 @@ TEST(CheckpointTest, ArchitectureMismatchIsAUserError) {
   NetworkConfig other = NetworkConfigFromJson(network.toStringRef());
   other.policy_hidden = {16};
   out.write("network", c10::IValue(ToJson(other)));
-  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+  for (const char* key : {"params", "target_scaling", "exp_avg", "exp_avg_sq"}) {
     torch::Tensor t;
     in.read(key, t);
     out.write(key, t);

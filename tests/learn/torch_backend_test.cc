@@ -1,0 +1,311 @@
+// The Torch backend (Backend::kTorch) against our kernels: same gradients and weights from the
+// same state, its own learning, determinism, interchangeable checkpoints, and the setting's names.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "engine/core/error.h"
+#include "engine/core/malloc_tuning.h"
+#include "engine/learn/config_json.h"
+#include "engine/learn/kernels.h"
+#include "engine/learn/learner.h"
+#include "engine/learn/trainer_impl.h"
+#include "tests/learn/test_data.h"
+
+namespace recon::learn {
+namespace {
+
+using testing::BitwiseEqual;
+using ::testing::HasSubstr;
+using testing::MakeImageTask;
+using testing::MakeVectorTask;
+using testing::Probe;
+using testing::SmallImageNet;
+
+const bool kMallocTuned = (recon::TuneMallocForTraining(), true);
+
+double MaxAbs(const std::vector<float>& a) {
+  double m = 0;
+  for (float v : a) m = std::max(m, std::abs(static_cast<double>(v)));
+  return m;
+}
+
+double MaxAbsDiff(const std::vector<float>& a, const std::vector<float>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double m = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    m = std::max(m, std::abs(static_cast<double>(a[i]) - b[i]));
+  }
+  return m;
+}
+
+struct Case {
+  std::string name;
+  Dataset data;
+  NetworkConfig network;
+  TrainConfig train;
+};
+
+// Authors' CNN on Dynamic-2D-like 3x32x32 images (raw 0-255 pixels) and the vector MLP, each with
+// both losses, RECON with play and the Baseline.
+std::vector<Case> Cases() {
+  std::vector<Case> cases;
+  for (bool image : {true, false}) {
+    for (LossKind loss : {LossKind::kNll, LossKind::kMseSample}) {
+      for (Method method : {Method::kRecon, Method::kBaseline}) {
+        Case c;
+        c.name =
+            std::string(image ? "image" : "vector") + " " + ToString(loss) + " " + ToString(method);
+        c.data = image ? MakeImageTask(21, 24, 32, 12) : MakeVectorTask(22, 20, 40);
+        c.train = loss == LossKind::kMseSample ? AuthorsRecipe() : TrainConfig{};
+        c.train.restart_rule = false;
+        c.train.method = method;
+        c.train.seed = 5;
+        c.train.play_weight = 0.7;  // unlike the other weights, so that a mix-up shows
+        c.train.steps = 1000;
+        cases.push_back(std::move(c));
+      }
+    }
+  }
+  return cases;
+}
+
+TrainConfig WithBackend(TrainConfig train, Backend backend) {
+  train.backend = backend;
+  return train;
+}
+
+std::string TempPath(const std::string& name) {
+  return (std::filesystem::path(::testing::TempDir()) / ("recon_torch_" + name)).string();
+}
+
+TEST(TorchBackendTest, ParseBackendAcceptsTheTwoNamesOnly) {
+  EXPECT_EQ(ParseBackend("fused"), Backend::kFused);
+  EXPECT_EQ(ParseBackend("torch"), Backend::kTorch);
+  EXPECT_EQ(ToString(Backend::kFused), "fused");
+  EXPECT_EQ(ToString(Backend::kTorch), "torch");
+  EXPECT_EQ(TrainConfig{}.backend, Backend::kFused);
+  for (const std::string bad : {"Torch", "libtorch", "cuda", ""}) {
+    try {
+      ParseBackend(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const UserError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("unknown backend '" + bad + "'"));
+      EXPECT_THAT(e.what(), HasSubstr("expected fused or torch"));
+    }
+  }
+}
+
+TEST(TorchBackendTest, ConfigJsonStoresTheBackendAndOldConfigsReadAsFused) {
+  TrainConfig torch_config;
+  torch_config.backend = Backend::kTorch;
+  EXPECT_EQ(TrainConfigFromJson(ToJson(torch_config)), torch_config);
+  nlohmann::json j = nlohmann::json::parse(ToJson(torch_config));
+  j.erase("backend");  // as written before the setting existed
+  EXPECT_EQ(TrainConfigFromJson(j.dump()).backend, Backend::kFused);
+  j["backend"] = "gpu";
+  EXPECT_THROW(TrainConfigFromJson(j.dump()), UserError);
+}
+
+TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
+  for (const Case& c : Cases()) {
+    SCOPED_TRACE(c.name);
+    TrainerImpl fused(c.data, c.network, WithBackend(c.train, Backend::kFused));
+    TrainerImpl torch(c.data, c.network, WithBackend(c.train, Backend::kTorch));
+    ASSERT_TRUE(BitwiseEqual(fused.State().params, torch.State().params));  // same start
+    fused.Step();
+    torch.Step();
+    const TrainerState f = fused.State(), t = torch.State();
+    EXPECT_EQ(t.adam_step, 1);
+    // The same batch and noise draws were used.
+    EXPECT_TRUE(std::equal(std::begin(t.batch_rng.s), std::end(t.batch_rng.s), f.batch_rng.s));
+    EXPECT_TRUE(std::equal(std::begin(t.noise_rng.s), std::end(t.noise_rng.s), f.noise_rng.s));
+    EXPECT_NEAR(f.last.action_loss, t.last.action_loss, 1e-5 * std::abs(f.last.action_loss));
+    EXPECT_NEAR(f.last.beacon_loss, t.last.beacon_loss, 1e-5 * std::abs(f.last.beacon_loss));
+    EXPECT_NEAR(f.last.play_loss, t.last.play_loss, 1e-5 * std::abs(f.last.play_loss));
+    EXPECT_NEAR(f.last.total_loss, t.last.total_loss, 1e-5 * std::abs(f.last.total_loss));
+    if (c.train.method == Method::kRecon) {
+      EXPECT_GT(t.last.play_loss, 0.0f);  // the play term is on
+    }
+
+    // After Adam's first step exp_avg is 0.1 * gradient: the gradients agree to float rounding.
+    EXPECT_LE(MaxAbsDiff(f.exp_avg, t.exp_avg), 2e-4 * MaxAbs(f.exp_avg));
+    // The first Adam update is lr * g / (|g| + 1e-8), about lr * sign(g): the weights agree
+    // tightly wherever |g| is well above Adam's epsilon. A gradient at epsilon's scale is mostly
+    // cancellation, so its relative rounding error is large and so is its update's; such
+    // entries are rare (measured: at most one per case).
+    const double tolerance = 1e-5 * MaxAbs(f.params);
+    int loose = 0;
+    for (size_t i = 0; i < f.params.size(); ++i) {
+      const double g = 10.0 * std::min(std::abs(f.exp_avg[i]), std::abs(t.exp_avg[i]));
+      const double diff = std::abs(static_cast<double>(f.params[i]) - t.params[i]);
+      if (g >= 1e-6) {
+        EXPECT_LE(diff, tolerance) << "parameter " << i << " (gradient " << g << ")";
+      } else if (diff > tolerance) {
+        ++loose;
+        EXPECT_LE(diff, c.train.learning_rate) << "parameter " << i << " (gradient " << g << ")";
+      }
+    }
+    EXPECT_LE(loose, 3);
+  }
+}
+
+// Features and actions of the first samples, and the last step's loss, after 50 steps.
+struct After50 {
+  std::vector<float> probe;
+  float loss = 0;
+};
+
+After50 Train50(const Case& c, Backend backend) {
+  TrainerImpl trainer(c.data, c.network, WithBackend(c.train, backend));
+  for (int i = 0; i < 50; ++i) trainer.Step();
+  return {Probe(Policy(trainer.MakePolicy()), c.data), trainer.State().last.total_loss};
+}
+
+TEST(TorchBackendTest, FiftyStepsStayCloseToTheFusedBackend) {
+  for (const Case& c : Cases()) {
+    SCOPED_TRACE(c.name);
+    const After50 fused = Train50(c, Backend::kFused), torch = Train50(c, Backend::kTorch);
+    // The yardstick for "rounds differently": our own kernels on another instruction set.
+    const std::string best = kernels::Kernels().name;
+    ASSERT_TRUE(kernels::UseKernels("generic"));
+    const After50 generic = Train50(c, Backend::kFused);
+    kernels::UseKernels(best);
+
+    // Some of these runs are chaotic under rounding (the authors' CNN on raw pixels with the
+    // NLL: our generic and vector kernels end 10% apart), so the tolerance is the larger of 1%
+    // and twice the spread between our own kernel tables.
+    const double scale = MaxAbs(fused.probe);
+    EXPECT_LE(MaxAbsDiff(torch.probe, fused.probe),
+              std::max(0.01 * scale, 2 * MaxAbsDiff(generic.probe, fused.probe)));
+    EXPECT_LE(std::abs(torch.loss - fused.loss),
+              std::max(0.01 * std::abs(fused.loss), 2.0 * std::abs(generic.loss - fused.loss)));
+    // They do round differently: bitwise equality would mean the Torch path never ran.
+    if (c.data.spec.YIsImage()) {
+      EXPECT_FALSE(BitwiseEqual(torch.probe, fused.probe));
+    }
+  }
+}
+
+TEST(TorchBackendTest, TorchBackendLowersTheLossOnItsOwn) {
+  const Dataset data = MakeVectorTask(3, 20);
+  TrainConfig train;
+  train.steps = 1500;
+  train.seed = 1;
+  train.backend = Backend::kTorch;
+  Trainer trainer(data, NetworkConfig{}, train);
+  std::vector<float> losses;
+  trainer.SetObserver([&](const StepMetrics& m) { losses.push_back(m.action_loss); });
+  trainer.Train();
+  ASSERT_EQ(losses.size(), 1500u);
+  double first = 0, last = 0;
+  for (int i = 0; i < 50; ++i) {
+    first += losses[i];
+    last += losses[losses.size() - 1 - i];
+  }
+  EXPECT_LT(last / 50, first / 50 - 2.0);  // NLL: a large absolute drop
+  const Policy policy = trainer.policy();
+  double error = 0;
+  int n = 0;
+  for (const Episode& e : data.demos) {
+    for (const Sample& s : e.samples) {
+      const std::vector<float> u = policy.Act(s.x, s.y);
+      for (int i = 0; i < 2; ++i, ++n) error += (u[i] - s.u[i]) * (u[i] - s.u[i]);
+    }
+  }
+  EXPECT_LT(error / n, 0.01);
+}
+
+TEST(TorchBackendTest, SameSeedGivesBitwiseSameModelTwice) {
+  const Dataset data = MakeImageTask(5, 24, 16, 6);
+  TrainConfig train = AuthorsRecipe();
+  train.steps = 30;
+  train.restart_rule = false;
+  train.backend = Backend::kTorch;
+  auto run = [&](const TrainConfig& t) {
+    Trainer trainer(data, SmallImageNet(), t);
+    trainer.Train();
+    return Probe(trainer.policy(), data);
+  };
+  const std::vector<float> a = run(train);
+  EXPECT_TRUE(BitwiseEqual(a, run(train)));
+  // Also while another Torch trainer runs on a second thread.
+  std::vector<float> a2, other;
+  TrainConfig baseline = train;
+  baseline.method = Method::kBaseline;
+  std::thread ta([&] { a2 = run(train); });
+  std::thread tb([&] { other = run(baseline); });
+  ta.join();
+  tb.join();
+  EXPECT_TRUE(BitwiseEqual(a, a2));
+  EXPECT_TRUE(BitwiseEqual(other, run(baseline)));
+  train.seed = 2;
+  EXPECT_FALSE(BitwiseEqual(a, run(train)));
+}
+
+TEST(TorchBackendTest, DivergenceStopsBeforeTheWeightsAreTouched) {
+  const Dataset data = MakeVectorTask(1, 5);
+  TrainConfig train;
+  train.steps = 50;
+  train.learning_rate = 1e30;
+  train.backend = Backend::kTorch;
+  Trainer trainer(data, NetworkConfig{}, train);
+  std::vector<float> after_last_good_step;
+  trainer.SetObserver(
+      [&](const StepMetrics&) { after_last_good_step = Probe(trainer.policy(), data, 2); });
+  try {
+    trainer.Train();
+    FAIL() << "expected DivergenceError";
+  } catch (const DivergenceError& e) {
+    EXPECT_EQ(e.step(), trainer.step());
+    EXPECT_GT(e.step(), 0);
+    EXPECT_THAT(e.what(), HasSubstr("not finite"));
+  }
+  EXPECT_TRUE(BitwiseEqual(Probe(trainer.policy(), data, 2), after_last_good_step));
+}
+
+TEST(TorchBackendTest, TorchCheckpointResumesUnderEitherBackend) {
+  const Dataset data = MakeImageTask(4, 24, 16, 6);
+  TrainConfig train = AuthorsRecipe();
+  train.steps = 40;
+  train.restart_rule = false;
+  train.backend = Backend::kTorch;
+  Trainer straight(data, SmallImageNet(), train);
+  straight.Train();
+
+  Trainer first_half(data, SmallImageNet(), train);
+  std::atomic<bool> cancel{false};
+  first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step == 19; });
+  first_half.Train(&cancel);
+  ASSERT_EQ(first_half.step(), 20);
+  const std::string path = TempPath("half.ckpt");
+  first_half.SaveCheckpoint(path);
+
+  // Under the stored backend: bitwise the uninterrupted run.
+  const std::unique_ptr<Trainer> as_torch = Trainer::Resume(path, data);
+  EXPECT_EQ(as_torch->train_config().backend, Backend::kTorch);
+  EXPECT_EQ(as_torch->step(), 20);
+  as_torch->Train();
+  EXPECT_TRUE(BitwiseEqual(Probe(as_torch->policy(), data), Probe(straight.policy(), data)));
+
+  // Under our kernels: the same state continues, so the result is close (not bitwise).
+  const std::unique_ptr<Trainer> as_fused = Trainer::Resume(path, data, Backend::kFused);
+  EXPECT_EQ(as_fused->train_config().backend, Backend::kFused);
+  EXPECT_EQ(as_fused->step(), 20);
+  as_fused->Train();
+  const std::vector<float> fused_probe = Probe(as_fused->policy(), data);
+  const std::vector<float> torch_probe = Probe(straight.policy(), data);
+  EXPECT_LE(MaxAbsDiff(fused_probe, torch_probe), 1e-3 * MaxAbs(torch_probe));
+  EXPECT_FALSE(BitwiseEqual(fused_probe, torch_probe));
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace recon::learn
