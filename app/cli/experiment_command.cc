@@ -36,6 +36,7 @@ struct ExperimentFlags {
   int jobs = 0;
   std::string loss = "nll";
   std::string backend = "fused";
+  std::string targets;  ///< empty: the recipe's choice
   double learning_rate = 4e-4;
   int steps = 6001;
   int baseline_steps = 3001;
@@ -84,6 +85,13 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     config.train.restart_rule = flags.restart;
   }
   config.train.backend = learn::ParseBackend(flags.backend);
+  if (flags.targets == "standardized") {
+    config.train.standardize_targets = true;
+  } else if (flags.targets == "raw") {
+    config.train.standardize_targets = false;
+  } else if (!flags.targets.empty()) {
+    throw UserError("--targets must be 'standardized' or 'raw' (got '" + flags.targets + "')");
+  }
   config.baseline_steps = flags.baseline_steps;
   config.play_per_scenario = flags.play;
   return config;
@@ -175,6 +183,9 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "fused (our kernels, checked against LibTorch autograd) or torch (LibTorch "
                    "operators and autograd; about 3x slower)")
       ->capture_default_str();
+  command->add_option("--targets", flags->targets,
+                      "standardized or raw action/beacon targets (default: standardized, raw "
+                      "with --authors-recipe)");
   command->add_option("--lr", flags->learning_rate, "Adam learning rate")->capture_default_str();
   command->add_option("--steps", flags->steps, "training steps with beacons")
       ->capture_default_str();

@@ -103,9 +103,8 @@ std::string AxisLabel(const std::string& metric_name) {
   return metric_name.substr(0, metric_name.find(" ("));
 }
 
-std::string Title(const ExperimentConfig& config) {
-  return config.world == "dynamic2d" ? "Dynamic 2D: beacon placements"
-                                     : "Static 2D: beacons and play data";
+std::string WorldTitle(const ExperimentConfig& config) {
+  return config.world == "dynamic2d" ? "Dynamic 2D" : "Static 2D";
 }
 
 }  // namespace
@@ -155,7 +154,8 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
 
   // The paper-style bar figure, for the first demonstration count.
   report::BarChart bars;
-  bars.title = Title(config);
+  bars.title = WorldTitle(config) +
+               (config.world == "dynamic2d" ? ": beacon placements" : ": beacons and play data");
   bars.subtitle = Subtitle(config, result, config.demos.front());
   bars.y_label = AxisLabel(result.metric_name);
   for (const ConditionSummary& s : summaries) {
@@ -174,7 +174,7 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
 
   if (config.demos.size() > 1) {
     report::LineChart curve;
-    curve.title = Title(config) + ": data efficiency";
+    curve.title = WorldTitle(config) + ": data efficiency";
     curve.subtitle = std::to_string(config.runs) + " runs per point (mean \xC2\xB1 standard error)";
     curve.x_label = "demonstrations";
     curve.y_label = AxisLabel(result.metric_name);
@@ -196,7 +196,7 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
   }
 
   report::LineChart losses;
-  losses.title = Title(config) + ": action loss while training (run 0)";
+  losses.title = WorldTitle(config) + ": action loss while training (run 0)";
   losses.subtitle = "window means, " + learn::ToString(config.train.loss) + " loss, " +
                     std::to_string(config.demos.front()) + " demos";
   losses.x_label = "training step";

@@ -129,6 +129,9 @@ TEST(CliTest, UnknownFlagAndMissingSubcommandAreUsageErrors) {
   EXPECT_EQ(RunRecon("experiment dynamic2d --no-such-flag").exit_code, 2);
   EXPECT_EQ(RunRecon("").exit_code, 2);
   EXPECT_EQ(RunRecon("experiment dynamic2d --runs abc").exit_code, 2);
+  const CommandResult targets = RunRecon("experiment dynamic2d --targets meters");
+  EXPECT_EQ(targets.exit_code, 2);
+  EXPECT_THAT(targets.output, HasSubstr("--targets must be 'standardized' or 'raw'"));
   const CommandResult help = RunRecon("experiment dynamic2d --help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_THAT(help.output, HasSubstr("--conditions"));
