@@ -7,12 +7,10 @@
 #include <vector>
 
 #include "engine/core/rng.h"
+#include "engine/worlds/vec2.h"
 #include "engine/worlds/world.h"
 
 namespace recon::worlds {
-
-/// A point or vector in the plane (world units).
-using Vec2 = std::array<double, 2>;
 
 /// How a Dynamic2D world is configured. See docs/worlds.md for every setting.
 struct Dynamic2DOptions {

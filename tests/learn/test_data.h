@@ -40,6 +40,19 @@ inline Dataset MakeVectorTask(uint64_t seed, int episodes = 20, int play = 0) {
   return data;
 }
 
+/// Mean squared error of the policy's actions against the demonstrations' actions.
+inline double ActionMse(const Policy& policy, const Dataset& data) {
+  double error = 0;
+  int n = 0;
+  for (const Episode& e : data.demos) {
+    for (const Sample& s : e.samples) {
+      const std::vector<float> u = policy.Act(s.x, s.y);
+      for (size_t i = 0; i < u.size(); ++i, ++n) error += (u[i] - s.u[i]) * (u[i] - s.u[i]);
+    }
+  }
+  return error / n;
+}
+
 /// Image task: C x size x size images with a noisy background (values in [225, 255]) and one
 /// bright 2x2 block; b = block position in [-1, 1]^2, u = direction to it from x.
 inline Dataset MakeImageTask(uint64_t seed, int samples = 24, int size = 16, int play = 0) {

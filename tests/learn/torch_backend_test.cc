@@ -211,16 +211,7 @@ TEST(TorchBackendTest, TorchBackendLowersTheLossOnItsOwn) {
     last += losses[losses.size() - 1 - i];
   }
   EXPECT_LT(last / 50, first / 50 - 2.0);  // NLL: a large absolute drop
-  const Policy policy = trainer.policy();
-  double error = 0;
-  int n = 0;
-  for (const Episode& e : data.demos) {
-    for (const Sample& s : e.samples) {
-      const std::vector<float> u = policy.Act(s.x, s.y);
-      for (int i = 0; i < 2; ++i, ++n) error += (u[i] - s.u[i]) * (u[i] - s.u[i]);
-    }
-  }
-  EXPECT_LT(error / n, 0.01);
+  EXPECT_LT(testing::ActionMse(trainer.policy(), data), 0.01);
 }
 
 TEST(TorchBackendTest, SameSeedGivesBitwiseSameModelTwice) {

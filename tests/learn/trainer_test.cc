@@ -59,16 +59,7 @@ TEST(TrainerTest, TrainingLowersTheLoss) {
   EXPECT_FALSE(result.cancelled);
 
   // The mean action is close to the expert's on the training data.
-  const Policy policy = trainer.policy();
-  double error = 0;
-  int n = 0;
-  for (const Episode& e : data.demos) {
-    for (const Sample& s : e.samples) {
-      const std::vector<float> u = policy.Act(s.x, s.y);
-      for (int i = 0; i < 2; ++i, ++n) error += (u[i] - s.u[i]) * (u[i] - s.u[i]);
-    }
-  }
-  EXPECT_LT(error / n, 0.01);
+  EXPECT_LT(testing::ActionMse(trainer.policy(), data), 0.01);
 }
 
 TEST(TrainerTest, SameSeedGivesBitwiseSameModelAndOtherSeedDoesNot) {
