@@ -75,15 +75,16 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.jobs = flags.jobs > 0 ? flags.jobs
                                : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   config.network.feature_dim = flags.feature_dim;
-  if (flags.authors_recipe) {
-    config.train = learn::AuthorsRecipe();
-  } else {
-    config.train.loss = learn::ParseLossKind(flags.loss);
-    config.train.learning_rate = flags.learning_rate;
-    config.train.steps = flags.steps;
-    config.train.batch_size = flags.batch;
-    config.train.restart_rule = flags.restart;
-  }
+  // --authors-recipe changes the starting point; options typed explicitly still win over it.
+  const auto use = [&](const char* option) {
+    return !flags.authors_recipe || command.get_option(option)->count() > 0;
+  };
+  if (flags.authors_recipe) config.train = learn::AuthorsRecipe();
+  if (use("--loss")) config.train.loss = learn::ParseLossKind(flags.loss);
+  if (use("--lr")) config.train.learning_rate = flags.learning_rate;
+  if (use("--steps")) config.train.steps = flags.steps;
+  if (use("--batch")) config.train.batch_size = flags.batch;
+  if (use("--restart")) config.train.restart_rule = flags.restart;
   config.train.backend = learn::ParseBackend(flags.backend);
   if (flags.targets == "standardized") {
     config.train.standardize_targets = true;
@@ -201,7 +202,8 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                     "retrain a run from a new seed stream when its final training error is bad "
                     "(the authors' rule; on by default)");
   command->add_flag("--authors-recipe", flags->authors_recipe,
-                    "the authors' exact recipe: mse-sample loss, weights 1/1.2/1.2, restarts");
+                    "start from the authors' recipe: mse-sample loss, weights 1/1.2/1.2, raw "
+                    "targets, restarts (options given explicitly still apply)");
   command->callback([flags, command, &global] { Run(*flags, *command, global); });
 }
 

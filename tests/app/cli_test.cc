@@ -86,6 +86,21 @@ TEST(CliTest, TorchBackendRunsAndUnknownBackendIsRejected) {
   EXPECT_THAT(bad.output, HasSubstr("unknown backend 'tensorflow'"));
 }
 
+TEST(CliTest, AuthorsRecipeKeepsExplicitOptions) {
+  const fs::path out = FreshDir("authors");
+  const CommandResult r =
+      RunRecon(std::string("experiment dynamic2d ") + kTiny +
+               " --conditions exact --authors-recipe --lr 0.001 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(out / "summary.json");
+  const nlohmann::json train = nlohmann::json::parse(in)["train"];
+  EXPECT_EQ(train["loss"], "mse-sample");                         // from the recipe
+  EXPECT_EQ(train["weights"][1], 1.2);                            // from the recipe
+  EXPECT_EQ(train["standardize_targets"], false);                 // from the recipe
+  EXPECT_EQ(train["steps"], 40);                                  // typed: kTiny's --steps
+  EXPECT_DOUBLE_EQ(train["learning_rate"].get<double>(), 0.001);  // typed
+}
+
 TEST(CliTest, NegativePlayIsRejected) {
   const CommandResult r =
       RunRecon("experiment static2d --play -3 --out " + FreshDir("play").string());
