@@ -3,6 +3,7 @@ find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 # Torch's CMake config prints warnings about optional CUDA/kineto pieces; they are harmless on CPU.
