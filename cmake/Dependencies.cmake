@@ -4,6 +4,8 @@ find_package(Threads REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+# MuJoCo's exported target lists /usr/include/libqhull_r, so libqhull-dev must be installed.
+find_package(mujoco REQUIRED)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 
 # Torch's CMake config prints warnings about optional CUDA/kineto pieces; they are harmless on CPU.
