@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/progress.h"
+#include "engine/core/strings.h"
 #include "engine/experiments/condition.h"
 #include "engine/experiments/experiment.h"
 #include "engine/experiments/summary.h"
@@ -158,11 +159,10 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
       ->capture_default_str();
   command->add_option("--runs", flags->runs, "training runs per condition")->capture_default_str();
   command->add_option("--tests", flags->tests, "test scenarios")->capture_default_str();
-  std::string known;
-  for (const std::string& n : experiments::KnownConditionNames(world)) {
-    known += (known.empty() ? "" : ",") + n;
-  }
-  command->add_option("--conditions", flags->conditions, "conditions to run, from: " + known)
+  command
+      ->add_option(
+          "--conditions", flags->conditions,
+          "conditions to run, from: " + JoinNames(experiments::KnownConditionNames(world), ","))
       ->delimiter(',');
   if (world == "dynamic2d") {
     command

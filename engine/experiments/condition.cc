@@ -5,6 +5,7 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 
 namespace recon::experiments {
 
@@ -46,12 +47,6 @@ std::vector<KnownCondition> Table(const std::string& world) {
   throw UserError("unknown experiment world '" + world + "' (valid: dynamic2d, static2d)");
 }
 
-std::string Join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
 std::string FormatSigma(double sigma) {
   char buf[32];
   std::snprintf(buf, sizeof(buf), "%g", sigma);
@@ -90,7 +85,7 @@ std::vector<Condition> ParseConditions(const std::string& world,
                                  [&](const KnownCondition& k) { return name == k.name; });
     if (it == table.end()) {
       throw UserError("unknown condition '" + name + "' for " + world +
-                      " (valid: " + Join(KnownConditionNames(world)) + ")");
+                      " (valid: " + JoinNames(KnownConditionNames(world)) + ")");
     }
     add({it->name, it->label, it->placement, 0.0, it->method, it->use_play});
   }

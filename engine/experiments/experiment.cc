@@ -33,6 +33,10 @@ struct Task {
 
 }  // namespace
 
+int TrainSteps(const ExperimentConfig& config, const Condition& condition) {
+  return condition.method == learn::Method::kBaseline ? config.baseline_steps : config.train.steps;
+}
+
 void ValidateExperimentConfig(const ExperimentConfig& config) {
   if (config.conditions.empty()) throw UserError("no conditions to run");
   if (config.demos.empty()) throw UserError("--demos needs at least one value");
@@ -98,8 +102,7 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   learn::TrainConfig train = config.train;
   train.method = condition.method;
   train.seed = result.train_seed;
-  train.steps =
-      condition.method == learn::Method::kBaseline ? config.baseline_steps : config.train.steps;
+  train.steps = TrainSteps(config, condition);
   learn::Trainer trainer(data, config.network, train);
   if (curve != nullptr) {
     curve->condition = condition.name;

@@ -69,6 +69,9 @@ uint64_t TrainSeed(uint64_t seed, int run);
 /// Seed of test scenario `index` (the same for every condition and run).
 uint64_t TestScenarioSeed(uint64_t seed, int index);
 
+/// Steps a condition trains for: the Baseline has its own count (the authors halve it).
+int TrainSteps(const ExperimentConfig& config, const Condition& condition);
+
 /// Checks the configuration as far as it can without training: counts, steps, and for every
 /// RECON condition that the feature size k exceeds its beacon dimension d. Throws UserError.
 void ValidateExperimentConfig(const ExperimentConfig& config);

@@ -17,10 +17,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-int StepsOf(const ExperimentConfig& config, const Condition& c) {
-  return c.method == learn::Method::kBaseline ? config.baseline_steps : config.train.steps;
-}
-
 std::string ResultsCsv(const ExperimentResult& result) {
   std::ostringstream csv;
   csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
@@ -118,7 +114,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       s.condition = c.name;
       s.label = c.label;
       s.demos = demos;
-      s.train_steps = StepsOf(config, c);
+      s.train_steps = TrainSteps(config, c);
       std::vector<double> metrics;
       double attempts = 0, seconds = 0;
       int runs = 0;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 
 namespace recon::worlds {
 namespace {
@@ -21,12 +22,6 @@ constexpr int kBackgroundMax = 255;
 constexpr double kGreen = 0.0;
 constexpr double kOlive = 5.0;
 constexpr double kRed = 10.0;
-
-std::string JoinNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 double Distance(const Vec2& a, const Vec2& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
 

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 
 namespace recon::worlds {
 namespace {
@@ -15,12 +16,6 @@ namespace {
 constexpr uint64_t kScenarioStream = 0;
 constexpr uint64_t kNoiseStream = 1;
 constexpr uint64_t kPlayStream = 2;
-
-std::string JoinNames(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 double Distance(const Vec2& a, const Vec2& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
 

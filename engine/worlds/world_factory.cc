@@ -1,6 +1,7 @@
 #include "engine/worlds/world_factory.h"
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 #include "engine/worlds/dynamic2d.h"
 #include "engine/worlds/static2d.h"
 
@@ -8,9 +9,7 @@ namespace recon::worlds {
 namespace {
 
 [[noreturn]] void ThrowUnknownWorld(const std::string& name) {
-  std::string valid;
-  for (const std::string& n : WorldNames()) valid += (valid.empty() ? "" : ", ") + n;
-  throw UserError("unknown world '" + name + "'; valid worlds: " + valid);
+  throw UserError("unknown world '" + name + "'; valid worlds: " + JoinNames(WorldNames()));
 }
 
 }  // namespace
