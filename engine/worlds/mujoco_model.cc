@@ -66,18 +66,28 @@ MujocoModel MujocoModel::FromFile(const std::string& path) {
 }
 
 MujocoModel MujocoModel::FromString(const std::string& xml, const std::string& name) {
+  return FromFiles({{"model.xml", xml}}, "model.xml", name);
+}
+
+MujocoModel MujocoModel::FromFiles(const std::vector<std::pair<std::string, std::string>>& files,
+                                   const std::string& main_file, const std::string& name) {
   InstallMujocoErrorHandlers();
   // mjVFS holds 2,000 fixed-size names (about 2 MB): keep it off the stack.
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
-  constexpr char kFileName[] = "model.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), kFileName, static_cast<int>(xml.size())) != 0) {
-    throw UserError(name + ": cannot stage the MJCF text for MuJoCo");
+  struct VfsGuard {
+    mjVFS* vfs;
+    ~VfsGuard() { mj_deleteVFS(vfs); }
+  } guard{vfs.get()};
+  for (const auto& [file_name, text] : files) {
+    if (mj_makeEmptyFileVFS(vfs.get(), file_name.c_str(), static_cast<int>(text.size())) != 0) {
+      throw UserError(name + ": cannot stage " + file_name + " for MuJoCo");
+    }
+    std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file_name.c_str())], text.data(),
+                text.size());
   }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kFileName)], xml.data(), xml.size());
   char error[kErrorBufferSize] = "";
-  mjModel* model = mj_loadXML(kFileName, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
+  mjModel* model = mj_loadXML(main_file.c_str(), vfs.get(), error, sizeof(error));
   if (model == nullptr) throw UserError(name + " is not valid MJCF: " + Trimmed(error));
   return MujocoModel(model, name);
 }

@@ -9,6 +9,8 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 struct mjModel_;
 struct mjData_;
@@ -34,12 +36,19 @@ class MujocoModel {
   static MujocoModel FromFile(const std::string& path);
   /// Compiles MJCF text; `name` is used in messages (e.g. "tabletop scene").
   static MujocoModel FromString(const std::string& xml, const std::string& name);
+  /// Compiles `main_file` out of in-memory files {name, text}; <include file=".."/> resolves
+  /// among them by name. Used for the scenes compiled into the program (scene_assets.h).
+  static MujocoModel FromFiles(const std::vector<std::pair<std::string, std::string>>& files,
+                               const std::string& main_file, const std::string& name);
 
   MujocoModel(MujocoModel&&) noexcept;
   MujocoModel& operator=(MujocoModel&&) noexcept;
   ~MujocoModel();
 
   const mjModel_* model() const { return model_.get(); }
+  /// For set-up after compilation only (e.g. painting AprilTag bitmaps into textures before a
+  /// renderer uploads them); never while another thread simulates or renders this model.
+  mjModel_* mutable_model() { return model_.get(); }
   mjData_* data() { return data_.get(); }
   const mjData_* data() const { return data_.get(); }
 
