@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/cli/cell_commands.h"
 #include "app/cli/experiment_command.h"
 #include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   recon::cli::AddExperimentCommands(app, global);
+  recon::cli::AddCellCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -16,6 +16,8 @@
 #include "engine/experiments/experiment.h"
 #include "engine/experiments/summary.h"
 #include "engine/learn/learner.h"
+#include "engine/worlds/world_factory.h"
+#include "devices/render/mujoco_renderer.h"
 
 namespace recon::cli {
 
@@ -43,6 +45,7 @@ struct ExperimentFlags {
   int baseline_steps = 3001;
   int batch = 20;
   int feature_dim = 6;
+  int image_size = 64;
   int play = -1;
   bool restart = true;
   bool authors_compat = false;
@@ -96,6 +99,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.baseline_steps = flags.baseline_steps;
   config.play_per_scenario = flags.play;
+  if (worlds::WorldNeedsRenderer(flags.world)) {
+    config.cell.renderer_factory = render::MujocoRendererFactory();
+    config.cell.image_size = flags.image_size;
+  }
   return config;
 }
 
@@ -148,11 +155,20 @@ void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOpti
   for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
 }
 
+// A world's defaults: the paper's protocol for that experiment.
+struct WorldDefaults {
+  int runs = 15;
+  int tests = 100;
+  std::vector<int> demos = {10};
+};
+
 void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::string& help,
-                     int default_runs, const GlobalOptions& global) {
+                     const WorldDefaults& defaults, const GlobalOptions& global) {
   auto flags = std::make_shared<ExperimentFlags>();
   flags->world = world;
-  flags->runs = default_runs;
+  flags->runs = defaults.runs;
+  flags->tests = defaults.tests;
+  flags->demos = defaults.demos;
   CLI::App* command = experiment.add_subcommand(world, help);
   command->add_option("--demos", flags->demos, "demonstrations per run; a list sweeps them")
       ->delimiter(',')
@@ -198,6 +214,11 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                       "the world's recipe, 3)");
   command->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
       ->capture_default_str();
+  if (worlds::WorldNeedsRenderer(world)) {
+    command->add_option("--image-size", flags->image_size, "camera images are N x N pixels")
+        ->check(CLI::Range(16, 480))
+        ->capture_default_str();
+  }
   command->add_flag("--restart,!--no-restart", flags->restart,
                     "retrain a run from a new seed stream when its final training error is bad "
                     "(the authors' rule; on by default)");
@@ -214,10 +235,19 @@ void AddExperimentCommands(CLI::App& app, const GlobalOptions& global) {
       app.add_subcommand("experiment", "reproduce one of the paper's experiments");
   experiment->require_subcommand(1);
   AddWorldCommand(*experiment, "dynamic2d",
-                  "Dynamic 2D: beacon placements and noise (paper Fig. 5)", 15, global);
-  AddWorldCommand(*experiment, "static2d",
-                  "Static 2D: position/distance beacons with and without play (paper Fig. 4)", 20,
+                  "Dynamic 2D: beacon placements and noise (paper Fig. 5)", {15, 100, {10}},
                   global);
+  AddWorldCommand(*experiment, "static2d",
+                  "Static 2D: position/distance beacons with and without play (paper Fig. 4)",
+                  {20, 100, {10}}, global);
+  AddWorldCommand(*experiment, "bintransfer",
+                  "Bin transfer with the simulated UR5: action error against the expert (paper "
+                  "Fig. 4, right)",
+                  {20, 110, {10}}, global);
+  AddWorldCommand(*experiment, "tabletop",
+                  "Tabletop with the simulated UR5 and camera: toast to plate, beacons removed "
+                  "at test (paper Sec. V)",
+                  {3, 20, {4, 6}}, global);
 }
 
 }  // namespace recon::cli

@@ -41,10 +41,31 @@ constexpr KnownCondition kStatic2D[] = {
     {"recon-d-play", "RECON-D (Play)", "distance", learn::Method::kRecon, true},
 };
 
+// Bin transfer (the paper's Robosuite task): the same five conditions as Static 2D, with the
+// right-most object's position (P) or the grip-to-object distance (D).
+constexpr KnownCondition kBinTransfer[] = {
+    {"baseline", "Baseline", "none", learn::Method::kBaseline, false},
+    {"recon-p", "RECON-P", "position", learn::Method::kRecon, false},
+    {"recon-d", "RECON-D", "distance", learn::Method::kRecon, false},
+    {"recon-p-play", "RECON-P (Play)", "position", learn::Method::kRecon, true},
+    {"recon-d-play", "RECON-D (Play)", "distance", learn::Method::kRecon, true},
+};
+
+// Tabletop (the paper's real-robot task): a beacon beside the plate, with or without the 4 s of
+// play data in which the teacher moves the bowl around.
+constexpr KnownCondition kTabletop[] = {
+    {"baseline", "Baseline", "none", learn::Method::kBaseline, false},
+    {"recon", "RECON", "plate", learn::Method::kRecon, false},
+    {"recon-play", "RECON (Play)", "plate", learn::Method::kRecon, true},
+};
+
 std::vector<KnownCondition> Table(const std::string& world) {
   if (world == "dynamic2d") return {std::begin(kDynamic2D), std::end(kDynamic2D)};
   if (world == "static2d") return {std::begin(kStatic2D), std::end(kStatic2D)};
-  throw UserError("unknown experiment world '" + world + "' (valid: dynamic2d, static2d)");
+  if (world == "bintransfer") return {std::begin(kBinTransfer), std::end(kBinTransfer)};
+  if (world == "tabletop") return {std::begin(kTabletop), std::end(kTabletop)};
+  throw UserError("unknown experiment world '" + world +
+                  "' (valid: dynamic2d, static2d, bintransfer, tabletop)");
 }
 
 std::string FormatSigma(double sigma) {
@@ -65,6 +86,7 @@ std::vector<std::string> DefaultConditionNames(const std::string& world) {
   if (world == "dynamic2d") {
     return {"baseline", "exact", "partial", "other", "random", "exact+other", "exact+random"};
   }
+  if (world == "tabletop") return {"baseline", "recon-play"};  // the paper's comparison
   return KnownConditionNames(world);
 }
 

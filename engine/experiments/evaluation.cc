@@ -2,8 +2,22 @@
 
 namespace recon::experiments {
 
-std::vector<double> EvaluatePolicy(const WorldMaker& make_world, const learn::Policy& policy,
-                                   const std::vector<uint64_t>& scenario_seeds) {
+namespace {
+
+double SquaredError(const std::vector<float>& a, const std::vector<float>& b) {
+  double sum = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) {
+    const double d = static_cast<double>(a[k]) - b[k];
+    sum += d * d;
+  }
+  return a.empty() ? 0.0 : sum / static_cast<double>(a.size());
+}
+
+}  // namespace
+
+std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
+                                            const learn::Policy& policy,
+                                            const std::vector<uint64_t>& scenario_seeds) {
   const size_t n = scenario_seeds.size();
   std::vector<std::unique_ptr<worlds::World>> scenario_worlds;
   scenario_worlds.reserve(n);
@@ -11,8 +25,11 @@ std::vector<double> EvaluatePolicy(const WorldMaker& make_world, const learn::Po
     scenario_worlds.push_back(make_world());
     scenario_worlds.back()->Reset(scenario_seeds[i]);
   }
-  const int steps = n > 0 ? scenario_worlds.front()->EpisodeLength() : 0;
+  if (n == 0) return {};
+  const bool score_actions = scenario_worlds.front()->ScoresActions();
+  const int steps = scenario_worlds.front()->EpisodeLength();
   std::vector<std::vector<float>> xs(n), ys(n);
+  std::vector<double> action_error(n, 0.0);
   for (int t = 0; t < steps; ++t) {
     for (size_t i = 0; i < n; ++i) {
       worlds::Observation obs = scenario_worlds[i]->Observe();
@@ -20,23 +37,50 @@ std::vector<double> EvaluatePolicy(const WorldMaker& make_world, const learn::Po
       ys[i] = std::move(obs.y);
     }
     const std::vector<std::vector<float>> actions = policy.ActBatch(xs, ys);
-    for (size_t i = 0; i < n; ++i) scenario_worlds[i]->Step(actions[i]);
+    for (size_t i = 0; i < n; ++i) {
+      if (score_actions) {
+        const std::vector<float> expert = scenario_worlds[i]->ExpertAction();
+        action_error[i] += SquaredError(actions[i], expert);
+        scenario_worlds[i]->Step(expert);
+      } else {
+        scenario_worlds[i]->Step(actions[i]);
+      }
+    }
   }
-  std::vector<double> metrics(n);
-  for (size_t i = 0; i < n; ++i) metrics[i] = scenario_worlds[i]->EpisodeMetric();
+  std::vector<ScenarioOutcome> outcomes(n);
+  for (size_t i = 0; i < n; ++i) {
+    outcomes[i].metric =
+        score_actions ? action_error[i] / steps : scenario_worlds[i]->EpisodeMetric();
+    outcomes[i].succeeded = scenario_worlds[i]->TaskSucceeded();
+  }
+  return outcomes;
+}
+
+std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,
+                                            const std::vector<uint64_t>& scenario_seeds) {
+  std::vector<ScenarioOutcome> outcomes;
+  outcomes.reserve(scenario_seeds.size());
+  std::unique_ptr<worlds::World> world = make_world();
+  for (uint64_t seed : scenario_seeds) {
+    const double metric = worlds::Rollout(
+        *world, seed, [&](const worlds::Observation&) { return world->ExpertAction(); });
+    outcomes.push_back({world->ScoresActions() ? 0.0 : metric, world->TaskSucceeded()});
+  }
+  return outcomes;
+}
+
+std::vector<double> Metrics(const std::vector<ScenarioOutcome>& outcomes) {
+  std::vector<double> metrics;
+  metrics.reserve(outcomes.size());
+  for (const ScenarioOutcome& o : outcomes) metrics.push_back(o.metric);
   return metrics;
 }
 
-std::vector<double> EvaluateExpert(const WorldMaker& make_world,
-                                   const std::vector<uint64_t>& scenario_seeds) {
-  std::vector<double> metrics;
-  metrics.reserve(scenario_seeds.size());
-  std::unique_ptr<worlds::World> world = make_world();
-  for (uint64_t seed : scenario_seeds) {
-    metrics.push_back(worlds::Rollout(
-        *world, seed, [&](const worlds::Observation&) { return world->ExpertAction(); }));
-  }
-  return metrics;
+double SuccessRate(const std::vector<ScenarioOutcome>& outcomes) {
+  if (outcomes.empty()) return 0.0;
+  int succeeded = 0;
+  for (const ScenarioOutcome& o : outcomes) succeeded += o.succeeded ? 1 : 0;
+  return static_cast<double>(succeeded) / static_cast<double>(outcomes.size());
 }
 
 }  // namespace recon::experiments

@@ -12,14 +12,29 @@ namespace recon::experiments {
 
 using WorldMaker = std::function<std::unique_ptr<worlds::World>()>;
 
-/// Rolls `policy` out on each test scenario (one world per scenario, stepped in lockstep so the
-/// policy sees all observations of a step in one batch) and returns each scenario's metric.
-/// The worlds are made without beacons: a trained policy never reads one.
-std::vector<double> EvaluatePolicy(const WorldMaker& make_world, const learn::Policy& policy,
-                                   const std::vector<uint64_t>& scenario_seeds);
+/// How a policy did on one test scenario.
+struct ScenarioOutcome {
+  double metric = 0;
+  bool succeeded = false;  ///< only meaningful for worlds with HasSuccess()
+};
 
-/// The expert's metric on the same scenarios (the ceiling a figure draws as a reference).
-std::vector<double> EvaluateExpert(const WorldMaker& make_world,
-                                   const std::vector<uint64_t>& scenario_seeds);
+/// Scores `policy` on each test scenario, one world per scenario stepped in lockstep so the
+/// policy sees all observations of a step in one batch. Usually the policy drives (a rollout) and
+/// the world's EpisodeMetric scores the end state; for worlds that ScoresActions(), the expert
+/// drives and the metric is the mean squared difference between the policy's and the expert's
+/// actions over the demonstration (mean over steps and action components).
+/// The worlds are made without beacons: a trained policy never reads one.
+std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
+                                            const learn::Policy& policy,
+                                            const std::vector<uint64_t>& scenario_seeds);
+
+/// The expert's outcome on the same scenarios (the ceiling a figure draws as a reference; 0 for
+/// worlds that ScoresActions()).
+std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,
+                                            const std::vector<uint64_t>& scenario_seeds);
+
+/// The metrics of some outcomes, and the fraction that succeeded.
+std::vector<double> Metrics(const std::vector<ScenarioOutcome>& outcomes);
+double SuccessRate(const std::vector<ScenarioOutcome>& outcomes);
 
 }  // namespace recon::experiments

@@ -51,7 +51,8 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
     throw UserError("--steps and --baseline-steps must be positive");
   }
   for (const Condition& c : config.conditions) {
-    const int d = worlds::MakeWorld(config.world, c.placement, c.noise_sigma, config.authors_compat)
+    const int d = worlds::MakeWorld(config.world, c.placement, c.noise_sigma, config.authors_compat,
+                                      config.cell)
                       ->Spec()
                       .b_dim;
     if (c.method == learn::Method::kRecon && config.network.feature_dim <= d) {
@@ -80,8 +81,9 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
                  const std::vector<uint64_t>& test_seeds, LossCurve* curve,
                  const std::atomic<bool>* cancel) {
   const Condition& condition = config.conditions[task.condition];
-  std::unique_ptr<worlds::World> world = worlds::MakeWorld(
-      config.world, condition.placement, condition.noise_sigma, config.authors_compat);
+  std::unique_ptr<worlds::World> world =
+      worlds::MakeWorld(config.world, condition.placement, condition.noise_sigma,
+                        config.authors_compat, config.cell);
 
   RunResult result;
   result.condition = condition.name;
@@ -146,9 +148,11 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
 
   const learn::Policy policy = trainer.policy();
   const WorldMaker make_test_world = [&] {
-    return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat);
+    return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
   };
-  result.metric = Mean(EvaluatePolicy(make_test_world, policy, test_seeds));
+  const std::vector<ScenarioOutcome> outcomes = EvaluatePolicy(make_test_world, policy, test_seeds);
+  result.metric = Mean(Metrics(outcomes));
+  result.success_rate = SuccessRate(outcomes);
   return result;
 }
 
@@ -165,12 +169,16 @@ ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver
   ExperimentResult out;
   {
     const WorldMaker make_world = [&] {
-      return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat);
+      return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
     };
     const std::unique_ptr<worlds::World> probe = make_world();
     out.metric_name = probe->MetricName();
     out.higher_is_better = probe->HigherIsBetter();
-    out.expert_metric = Mean(EvaluateExpert(make_world, test_seeds));
+    out.has_success = probe->HasSuccess();
+    out.metric_key = probe->MetricKey();
+    const std::vector<ScenarioOutcome> expert = EvaluateExpert(make_world, test_seeds);
+    out.expert_metric = Mean(Metrics(expert));
+    out.expert_success_rate = SuccessRate(expert);
   }
 
   // Run-major order: if the sweep is stopped early, every condition has the same runs done.

@@ -8,6 +8,7 @@
 
 #include "engine/experiments/condition.h"
 #include "engine/learn/learner.h"
+#include "engine/worlds/world_factory.h"
 
 namespace recon::experiments {
 
@@ -22,6 +23,8 @@ struct ExperimentConfig {
   uint64_t seed = 1;              ///< everything random derives from this (see SeedsOf* below)
   bool authors_compat = false;    ///< reproduce the authors' two Dynamic 2D slips
   int jobs = 2;                   ///< runs trained in parallel, one Torch thread each
+  /// Renders camera images for the simulated cell's image worlds (tabletop); set by the app.
+  worlds::CellResources cell;
   learn::NetworkConfig network;
   learn::TrainConfig train;   ///< method, seed and steps are set per condition and run
   int baseline_steps = 3001;  ///< the authors train the Baseline for half as long
@@ -38,6 +41,7 @@ struct RunResult {
   uint64_t data_seed = 0;   ///< seeds the run's demonstration scenarios
   uint64_t train_seed = 0;  ///< seeds initialisation, batches and sampling noise
   double metric = 0;        ///< mean episode metric over the test scenarios
+  double success_rate = 0;  ///< fraction of test scenarios solved (worlds with HasSuccess())
   int attempts = 1;
   int train_steps = 0;
   double train_seconds = 0;
@@ -59,6 +63,9 @@ struct ExperimentResult {
   std::string metric_name;
   bool higher_is_better = true;
   double expert_metric = 0;  ///< the expert's mean score on the test scenarios
+  std::string metric_key;    ///< the metric's short name in summary.json, e.g. "distance"
+  bool has_success = false;  ///< the world reports success (runs carry a success rate)
+  double expert_success_rate = 0;
 };
 
 /// Seed of scenario `index` of run `run`'s demonstrations. A run with 5 demos uses a prefix of

@@ -20,21 +20,24 @@ using nlohmann::json;
 std::string ResultsCsv(const ExperimentResult& result) {
   std::ostringstream csv;
   csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
-         "final_action_loss,final_beacon_loss,final_play_loss\n";
+         "final_action_loss,final_beacon_loss,final_play_loss"
+      << (result.has_success ? ",success_rate\n" : "\n");
   char buf[512];
   for (const RunResult& r : result.runs) {
-    std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g\n",
+    std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g",
                   r.condition.c_str(), r.demos, r.run, static_cast<unsigned long long>(r.data_seed),
                   static_cast<unsigned long long>(r.train_seed), r.metric, r.attempts,
                   r.train_steps, r.train_seconds, r.final_losses.action_loss,
                   r.final_losses.beacon_loss, r.final_losses.play_loss);
     csv << buf;
+    if (result.has_success) csv << "," << r.success_rate;
+    csv << "\n";
   }
   return csv.str();
 }
 
-json SummaryBlock(const ConditionSummary& s) {
-  return {{"label", s.label},
+json SummaryBlock(const ConditionSummary& s, const ExperimentResult& result) {
+  json block = {{"label", s.label},
           {"mean", s.mean},
           {"sem", s.sem},
           {"n", s.n},
@@ -42,13 +45,20 @@ json SummaryBlock(const ConditionSummary& s) {
           {"train_steps", s.train_steps},
           {"mean_attempts", s.mean_attempts},
           {"mean_train_seconds", s.mean_train_seconds}};
+  // The metric also under its own short name ("distance", "action_mse"), as a reader expects.
+  if (!result.metric_key.empty()) block[result.metric_key] = s.mean;
+  if (result.has_success) {
+    block["success_rate"] = s.success_rate;
+    block["success_sem"] = s.success_sem;
+  }
+  return block;
 }
 
 json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
                  const std::vector<ConditionSummary>& summaries) {
   json by_demos = json::object();
   for (const ConditionSummary& s : summaries) {
-    by_demos[std::to_string(s.demos)]["conditions"][s.condition] = SummaryBlock(s);
+    by_demos[std::to_string(s.demos)]["conditions"][s.condition] = SummaryBlock(s, result);
   }
   json conditions = by_demos[std::to_string(config.demos.front())]["conditions"];
   json train = {
@@ -70,6 +80,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
   return {{"experiment", config.world},
           {"metric",
            {{"name", result.metric_name},
+            {"key", result.metric_key},
             {"higher_is_better", result.higher_is_better},
             {"expert", result.expert_metric}}},
           {"conditions", conditions},
@@ -100,7 +111,11 @@ std::string AxisLabel(const std::string& metric_name) {
 }
 
 std::string WorldTitle(const ExperimentConfig& config) {
-  return config.world == "dynamic2d" ? "Dynamic 2D" : "Static 2D";
+  if (config.world == "dynamic2d") return "Dynamic 2D";
+  if (config.world == "static2d") return "Static 2D";
+  if (config.world == "bintransfer") return "Bin transfer";
+  if (config.world == "tabletop") return "Tabletop";
+  return config.world;
 }
 
 }  // namespace
@@ -115,7 +130,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       s.label = c.label;
       s.demos = demos;
       s.train_steps = TrainSteps(config, c);
-      std::vector<double> metrics;
+      std::vector<double> metrics, success;
       double attempts = 0, seconds = 0;
       int runs = 0;
       for (const RunResult& r : result.runs) {
@@ -125,6 +140,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
         seconds += r.train_seconds;
         if (std::isfinite(r.metric)) {
           metrics.push_back(r.metric);
+          success.push_back(r.success_rate);
         } else {
           ++s.diverged;
         }
@@ -132,6 +148,8 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       s.mean = Mean(metrics);
       s.sem = StandardError(metrics);
       s.n = static_cast<int>(metrics.size());
+      s.success_rate = Mean(success);
+      s.success_sem = StandardError(success);
       s.mean_attempts = runs > 0 ? attempts / runs : 0;
       s.mean_train_seconds = runs > 0 ? seconds / runs : 0;
       out.push_back(s);

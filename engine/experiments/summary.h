@@ -19,6 +19,10 @@ struct ConditionSummary {
   int train_steps = 0;
   double mean_attempts = 0;
   double mean_train_seconds = 0;
+  /// Worlds with a notion of success: the mean over runs of each run's success rate, and its
+  /// standard error.
+  double success_rate = 0;
+  double success_sem = 0;
 };
 
 /// One summary per (demos, condition), in config order.

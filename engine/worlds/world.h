@@ -54,6 +54,17 @@ class World {
   virtual bool HigherIsBetter() const = 0;
   /// Name and unit of the metric, e.g. "final distance to the red object".
   virtual std::string MetricName() const = 0;
+  /// The metric's short name for tables and JSON, e.g. "distance", "reward", "action_mse".
+  virtual std::string MetricKey() const { return HigherIsBetter() ? "reward" : "distance"; }
+  /// True for tasks with a notion of success (the robot worlds), which experiments then report as
+  /// a success rate beside the metric.
+  virtual bool HasSuccess() const { return false; }
+  /// Whether the task is done in the current state (false when !HasSuccess()).
+  virtual bool TaskSucceeded() const { return false; }
+  /// True when a policy is scored by its action error along the expert's own demonstration of
+  /// each test scenario (the paper's BinTransfer metric: action MSE against the expert) instead
+  /// of by the outcome of its own rollout.
+  virtual bool ScoresActions() const { return false; }
 };
 
 /// Records one demonstration per seed: Reset(seed), then EpisodeLength() steps of (x, y, b, u)

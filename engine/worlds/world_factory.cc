@@ -2,8 +2,10 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
+#include "engine/worlds/bintransfer.h"
 #include "engine/worlds/dynamic2d.h"
 #include "engine/worlds/static2d.h"
+#include "engine/worlds/tabletop.h"
 
 namespace recon::worlds {
 namespace {
@@ -15,18 +17,24 @@ namespace {
 }  // namespace
 
 const std::vector<std::string>& WorldNames() {
-  static const std::vector<std::string> kNames = {"dynamic2d", "dynamic2d-state", "static2d"};
+  static const std::vector<std::string> kNames = {"dynamic2d", "dynamic2d-state", "static2d",
+                                                  "bintransfer", "tabletop"};
   return kNames;
 }
+
+bool WorldNeedsRenderer(const std::string& name) { return name == "tabletop"; }
 
 const std::vector<std::string>& WorldPlacements(const std::string& name) {
   if (name == "dynamic2d" || name == "dynamic2d-state") return Dynamic2D::Placements();
   if (name == "static2d") return Static2D::Placements();
+  if (name == "bintransfer") return BinTransferPlacements();
+  if (name == "tabletop") return Tabletop::Placements();
   ThrowUnknownWorld(name);
 }
 
 std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& placement,
-                                 double noise_sigma, bool authors_compat) {
+                                 double noise_sigma, bool authors_compat,
+                                 const CellResources& cell) {
   if (name == "dynamic2d" || name == "dynamic2d-state") {
     Dynamic2DOptions options;
     options.placement = placement;
@@ -40,6 +48,18 @@ std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& pla
     options.placement = placement;
     options.noise_sigma = noise_sigma;
     return MakeStatic2D(options);
+  }
+  if (name == "bintransfer") return MakeBinTransfer(placement, noise_sigma);
+  if (name == "tabletop") {
+    if (!cell.renderer_factory) {
+      throw UserError("the tabletop world observes camera images and needs a renderer (none "
+                      "was provided)");
+    }
+    TabletopOptions options;
+    options.placement = placement;
+    options.noise_sigma_m = noise_sigma;
+    options.image_width = options.image_height = cell.image_size;
+    return std::make_unique<Tabletop>(options, cell.renderer_factory());
   }
   ThrowUnknownWorld(name);
 }

@@ -4,22 +4,36 @@
 #include <string>
 #include <vector>
 
+#include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/world.h"
 
 namespace recon::worlds {
 
+/// What the simulated cell's worlds need beyond a placement: a way to render camera images (the
+/// application wires devices/render in; the engine never makes a GL context) and the image size.
+struct CellResources {
+  SceneRendererFactory renderer_factory;  ///< needed by worlds that observe camera images
+  int image_size = 64;                    ///< camera images are image_size x image_size
+};
+
 /// Names MakeWorld accepts: "dynamic2d" (image observations), "dynamic2d-state" (the 14-vector
-/// state instead of the image) and "static2d".
+/// state instead of the image), "static2d", and the simulated cell's "bintransfer" and
+/// "tabletop" (camera images; needs CellResources::renderer_factory).
 const std::vector<std::string>& WorldNames();
+
+/// True for worlds that observe camera images of the MuJoCo cell and so need a renderer.
+bool WorldNeedsRenderer(const std::string& name);
 
 /// Valid beacon placements of a world (throws UserError naming the valid worlds for an unknown
 /// name).
 const std::vector<std::string>& WorldPlacements(const std::string& name);
 
 /// Builds a world by name with a beacon placement and noise. `authors_compat` reproduces the
-/// authors' slips in Dynamic 2D and is ignored by Static 2D (which has no reference code).
-/// Throws UserError naming the valid worlds (or placements) when a name is unknown.
+/// authors' slips in Dynamic 2D and is ignored by the others (which have no reference code).
+/// Throws UserError naming the valid worlds (or placements) when a name is unknown, and when a
+/// world needs a renderer that `cell` does not provide.
 std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& placement,
-                                 double noise_sigma, bool authors_compat);
+                                 double noise_sigma, bool authors_compat,
+                                 const CellResources& cell = {});
 
 }  // namespace recon::worlds

@@ -1,0 +1,126 @@
+#include "app/cli/cell_commands.h"
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "devices/cell/sim_calibration.h"
+#include "devices/render/mujoco_renderer.h"
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
+#include "engine/core/progress.h"
+#include "engine/core/strings.h"
+#include "engine/report/image_png.h"
+#include "engine/worlds/scene_assets.h"
+#include "engine/worlds/tabletop.h"
+#include "engine/worlds/tag_textures.h"
+
+namespace recon::cli {
+
+namespace {
+
+struct RenderFlags {
+  std::string scene = "tabletop";
+  std::string camera;
+  uint64_t seed = 1;
+  int width = 640;
+  int height = 480;
+  std::string out;
+};
+
+void RunRender(const RenderFlags& flags) {
+  render::MujocoRenderer renderer;
+  RgbImage image;
+  if (flags.scene == "tabletop") {
+    // The tabletop world lays the scene out from the seed (plate side, bowl, toast), exactly as
+    // an experiment's scenario with that seed.
+    worlds::TabletopOptions options;
+    options.placement = "none";
+    worlds::Tabletop world(options, std::make_unique<render::MujocoRenderer>());
+    world.Reset(flags.seed);
+    image = renderer.Render(world.scene(), flags.camera.empty() ? "top" : flags.camera,
+                            flags.width, flags.height);
+  } else {
+    worlds::MujocoModel scene = worlds::LoadScene(flags.scene);
+    worlds::PaintTagTextures(scene);
+    image = renderer.Render(scene, flags.camera.empty() ? "top" : flags.camera, flags.width,
+                            flags.height);
+  }
+  report::WritePng(image, flags.out);
+  std::printf("wrote %s (%d x %d, scene %s, seed %llu)\n", flags.out.c_str(), image.width,
+              image.height, flags.scene.c_str(), static_cast<unsigned long long>(flags.seed));
+}
+
+struct CalibrateFlags {
+  bool sim = false;
+  int points = 12;
+  uint64_t seed = 1;
+  std::string dimension = "2d";
+  double threshold_m = 0.10;
+  std::string out;
+};
+
+void RunCalibrate(const CalibrateFlags& flags) {
+  if (!flags.sim) {
+    throw UserError("calibrate needs --sim: real UWB and camera drivers are not connected yet");
+  }
+  cell::SimCalibrationOptions options;
+  options.points = flags.points;
+  options.seed = flags.seed;
+  options.calibration.pass_rmse_m = flags.threshold_m;
+  if (flags.dimension == "2d") {
+    options.calibration.dimension = calib::FitDimension::k2D;
+  } else if (flags.dimension == "3d") {
+    options.calibration.dimension = calib::FitDimension::k3D;
+  } else {
+    throw UserError("--dim must be 2d or 3d (got '" + flags.dimension + "')");
+  }
+  std::printf("recon calibrate --sim: %d beacon poses in the simulated tabletop cell, seed %llu\n",
+              flags.points, static_cast<unsigned long long>(flags.seed));
+  std::fflush(stdout);  // the progress line goes to stderr; keep the two in order
+  ProgressLine progress("calibrating", flags.points);
+  const cell::SimCalibrationResult result = cell::RunSimulatedCalibration(
+      options, [&](int, int) { progress.Advance(); });
+  progress.Finish();
+  std::printf("%s", cell::Describe(result).c_str());
+  if (!flags.out.empty()) {
+    calib::SaveCalibration(result.report, flags.out);
+    std::printf("wrote %s\n", flags.out.c_str());
+  }
+}
+
+}  // namespace
+
+void AddCellCommands(CLI::App& app) {
+  auto render_flags = std::make_shared<RenderFlags>();
+  CLI::App* render = app.add_subcommand("render", "write one camera image of a simulated scene");
+  render->add_option("--scene", render_flags->scene,
+                     "a scene (" + JoinNames(worlds::SceneNames()) + ") or an MJCF file ending in .xml")
+      ->capture_default_str();
+  render->add_option("--camera", render_flags->camera, "camera name (default: top)");
+  render->add_option("--seed", render_flags->seed, "scenario seed (tabletop layout)")
+      ->capture_default_str();
+  render->add_option("--width", render_flags->width, "image width")->capture_default_str();
+  render->add_option("--height", render_flags->height, "image height")->capture_default_str();
+  render->add_option("--out", render_flags->out, "PNG file to write")->required();
+  render->callback([render_flags] { RunRender(*render_flags); });
+
+  auto cal_flags = std::make_shared<CalibrateFlags>();
+  CLI::App* calibrate =
+      app.add_subcommand("calibrate", "fit the UWB frame to the table frame from AprilTags");
+  calibrate->add_flag("--sim", cal_flags->sim, "calibrate in the simulated cell");
+  calibrate->add_option("--points", cal_flags->points, "static beacon poses to collect")
+      ->check(CLI::Range(3, 1000))
+      ->capture_default_str();
+  calibrate->add_option("--seed", cal_flags->seed, "seed of poses, UWB noise and hidden frame")
+      ->capture_default_str();
+  calibrate->add_option("--dim", cal_flags->dimension, "2d (planar) or 3d fit")
+      ->capture_default_str();
+  calibrate->add_option("--threshold", cal_flags->threshold_m, "pass if RMSE is at most this (m)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  calibrate->add_option("--out", cal_flags->out, "save the calibration (JSON) here");
+  calibrate->callback([cal_flags] { RunCalibrate(*cal_flags); });
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,205 @@
+#include "devices/render/mujoco_renderer.h"
+
+#include <GL/gl.h>
+#include <mujoco/mujoco.h>
+
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include "devices/render/egl_context.h"
+#include "engine/core/error.h"
+
+namespace recon::render {
+
+namespace {
+
+// Room for every geom of the project's scenes plus the decorations MuJoCo adds; mjv_updateScene
+// warns (and drops geoms) beyond it.
+constexpr int kMaxSceneGeoms = 2000;
+
+// MuJoCo loads its OpenGL function pointers into process-wide variables when making a context;
+// two renderers starting on two threads must not do that at the same time.
+std::mutex make_context_mutex;
+
+std::string ModelName(const mjModel* m) { return m->names != nullptr ? m->names : ""; }
+
+std::string CameraNames(const mjModel* m) {
+  if (m->ncam == 0) return "it has no cameras";
+  std::string names;
+  for (int i = 0; i < m->ncam; ++i) {
+    const char* name = mj_id2name(m, mjOBJ_CAMERA, i);
+    names += (i == 0 ? "" : ", ") + (name != nullptr && *name != '\0'
+                                         ? "\"" + std::string(name) + "\""
+                                         : "#" + std::to_string(i) + " (unnamed)");
+  }
+  return "its cameras are " + names;
+}
+
+void ClearGlErrors() {
+  // glGetError reports (and clears) one error flag per call; there are only a handful of flags.
+  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
+  }
+}
+
+std::string Hex(unsigned value) {
+  char text[16];
+  std::snprintf(text, sizeof(text), "0x%04X", value);
+  return text;
+}
+
+/// What identifies the model MuJoCo's GPU copy was made from. The pointer alone could be reused
+/// by a later model after the first is freed; its buffer's address and size as well are unlikely
+/// to be.
+struct ModelKey {
+  const mjModel* model = nullptr;
+  const void* buffer = nullptr;
+  int buffer_size = 0;
+
+  bool operator==(const ModelKey&) const = default;
+  static ModelKey Of(const mjModel* m) { return {m, m->buffer, m->nbuffer}; }
+};
+
+}  // namespace
+
+struct MujocoRenderer::State {
+  EglContext egl;  // first member: made first, destroyed last
+  mjvScene scene;
+  mjvOption option;
+  mjvCamera camera;
+  mjvPerturb perturb;
+  mjrContext context;
+  ModelKey made_for;  // the model `scene` and `context` were made for; none yet when null
+  std::vector<unsigned char> bottom_up;  // mjr_readPixels' rows, reused between frames
+
+  State() {
+    mjv_defaultScene(&scene);
+    mjv_defaultOption(&option);
+    mjv_defaultCamera(&camera);
+    mjv_defaultPerturb(&perturb);
+    mjr_defaultContext(&context);
+  }
+
+  void Free() {
+    mjr_freeContext(&context);
+    mjv_freeScene(&scene);
+    made_for = {};
+  }
+
+  /// Makes MuJoCo's scene and GPU context for `m` unless they are already made for it.
+  void Prepare(const mjModel* m) {
+    const ModelKey key = ModelKey::Of(m);
+    if (made_for == key) return;
+    Free();
+    // A failed earlier attempt (see the catch below) leaves OpenGL errors that mjr_makeContext
+    // would blame on itself in a warning.
+    ClearGlErrors();
+    try {
+      mjv_makeScene(m, &scene, kMaxSceneGeoms);
+      {
+        std::lock_guard lock(make_context_mutex);
+        // The font is never drawn into camera images: the smallest one is the cheapest to make.
+        mjr_makeContext(m, &context, mjFONTSCALE_50);
+      }
+    } catch (...) {
+      Free();
+      ClearGlErrors();
+      throw;
+    }
+    // mjv_makeScene resets the flags; these two are most of llvmpipe's time per small frame.
+    scene.flags[mjRND_SHADOW] = 0;
+    scene.flags[mjRND_REFLECTION] = 0;
+    made_for = key;
+  }
+};
+
+MujocoRenderer::MujocoRenderer() {
+  worlds::InstallMujocoErrorHandlers();
+  state_ = std::make_unique<State>();
+}
+
+MujocoRenderer::~MujocoRenderer() {
+  // mjr_freeContext deletes OpenGL objects, so our context must be current for it.
+  try {
+    ScopedCurrent current(state_->egl);
+    state_->Free();
+  } catch (const std::exception&) {
+    // The context is current on another thread: destroying it frees its OpenGL objects anyway;
+    // only MuJoCo's CPU-side memory is left to free, and that needs no context.
+    mjv_freeScene(&state_->scene);
+  }
+}
+
+const std::string& MujocoRenderer::context_description() const { return state_->egl.description(); }
+
+RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& camera, int width,
+                                int height) {
+  const mjModel* m = scene.model();
+  const int camera_id = mj_name2id(m, mjOBJ_CAMERA, camera.c_str());
+  if (camera_id < 0) {
+    throw UserError("MuJoCo scene \"" + ModelName(m) + "\" has no camera \"" + camera + "\"; " +
+                    CameraNames(m));
+  }
+  const int max_width = m->vis.global.offwidth, max_height = m->vis.global.offheight;
+  if (width <= 0 || height <= 0 || width > max_width || height > max_height) {
+    throw UserError("cannot render a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " image from camera \"" + camera + "\" of MuJoCo scene \"" + ModelName(m) +
+                    "\": its offscreen buffer is " + std::to_string(max_width) + "x" +
+                    std::to_string(max_height) +
+                    " (raise <visual><global offwidth=\"..\" offheight=\"..\"/>)");
+  }
+
+  State& s = *state_;
+  ScopedCurrent current(s.egl);
+  s.Prepare(m);
+  s.camera.type = mjCAMERA_FIXED;
+  s.camera.fixedcamid = camera_id;
+  mjv_updateScene(m, scene.data(), &s.option, &s.perturb, &s.camera, mjCAT_ALL, &s.scene);
+
+  const mjrRect viewport = {0, 0, width, height};
+  mjr_setBuffer(mjFB_OFFSCREEN, &s.context);
+  if (s.context.currentBuffer != mjFB_OFFSCREEN) {
+    throw std::runtime_error("MuJoCo has no offscreen buffer for scene \"" + ModelName(m) + "\"");
+  }
+  mjr_render(viewport, &s.scene, &s.context);
+  // Rows of 3 * width bytes are not 4-byte aligned for every width; GL pads them by default.
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  const size_t row_bytes = static_cast<size_t>(width) * 3;
+  s.bottom_up.resize(row_bytes * height);
+  mjr_readPixels(s.bottom_up.data(), nullptr, viewport, &s.context);
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+    throw std::runtime_error("OpenGL error " + Hex(error) + " while rendering camera \"" + camera +
+                             "\" of MuJoCo scene \"" + ModelName(m) + "\"");
+  }
+
+  RgbImage image;
+  image.width = width;
+  image.height = height;
+  image.rgb.resize(row_bytes * height);
+  // OpenGL reads rows bottom-up; images are stored top row first.
+  for (int row = 0; row < height; ++row) {
+    std::memcpy(image.rgb.data() + row * row_bytes,
+                s.bottom_up.data() + (height - 1 - row) * row_bytes, row_bytes);
+  }
+  return image;
+}
+
+worlds::SceneRendererFactory MujocoRendererFactory() {
+  return
+      []() -> std::unique_ptr<worlds::SceneRenderer> { return std::make_unique<MujocoRenderer>(); };
+}
+
+bool HeadlessRenderingAvailable(std::string* why) {
+  try {
+    EglContext probe;
+    if (why != nullptr) why->clear();
+    return true;
+  } catch (const UserError& e) {
+    if (why != nullptr) *why = e.what();
+    return false;
+  }
+}
+
+}  // namespace recon::render

@@ -1,0 +1,250 @@
+#include "engine/worlds/tabletop.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/core/error.h"
+#include "engine/core/strings.h"
+#include "engine/worlds/scene_assets.h"
+#include "engine/worlds/tag_textures.h"
+
+namespace recon::worlds {
+
+namespace {
+
+constexpr char kCamera[] = "top";
+// Scenario layout, table frame (metres). The plate is at the left or the right edge.
+constexpr double kPlateMinX = 0.45, kPlateMaxX = 0.68;
+constexpr double kPlateMinAbsY = 0.30, kPlateMaxAbsY = 0.36;
+constexpr double kToastX = 0.33, kToastJitter = 0.02;
+constexpr double kToastRestZ = 0.009;
+constexpr double kBowlMinX = 0.22, kBowlMaxX = 0.82, kBowlMaxAbsY = 0.5;
+constexpr double kBowlClearPlate = 0.22, kBowlClearToast = 0.16, kBowlClearBeacon = 0.12;
+// The expert: waypoints above the toast and the plate, joint steps toward their IK solutions.
+constexpr double kApproachHeight_m = 0.12;
+constexpr double kCarryHeight_m = 0.12;
+constexpr double kLiftFirstBelow_m = 0.08;
+constexpr double kReleaseHeight_m = 0.05;
+constexpr double kRetreatHeight_m = 0.25;
+constexpr double kAlignTolerance_m = 0.012;
+constexpr double kGraspTolerance_m = 0.008;
+constexpr double kReleaseTolerance_m = 0.02;
+constexpr double kExpertGain_per_s = 1.2;
+constexpr double kExpertMaxSpeed_rad_s = 0.4;
+
+Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
+double PlanarDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return (a - b).head<2>().norm();
+}
+
+}  // namespace
+
+const std::vector<std::string>& Tabletop::Placements() {
+  static const std::vector<std::string> placements = {"none", "plate"};
+  return placements;
+}
+
+Tabletop::Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer> renderer)
+    : options_(options), renderer_(std::move(renderer)), scene_(LoadScene("tabletop")) {
+  const auto& placements = Placements();
+  if (std::find(placements.begin(), placements.end(), options_.placement) == placements.end()) {
+    throw UserError("unknown tabletop beacon placement '" + options_.placement +
+                    "' (valid: " + JoinNames(placements) + ")");
+  }
+  if (!std::isfinite(options_.noise_sigma_m) || options_.noise_sigma_m < 0) {
+    throw UserError("beacon noise must be a non-negative number of metres");
+  }
+  if (options_.image_width < 16 || options_.image_height < 16) {
+    throw UserError("tabletop camera images must be at least 16 x 16 pixels");
+  }
+  if (renderer_ == nullptr) throw UserError("the tabletop world needs a scene renderer");
+  PaintTagTextures(scene_);
+  arm_ = std::make_unique<Ur5Arm>(scene_);
+  const mjModel* m = scene_.model();
+  plate_body_ = mj_name2id(m, mjOBJ_BODY, "plate");
+  bowl_body_ = mj_name2id(m, mjOBJ_BODY, "bowl");
+  toast_body_ = mj_name2id(m, mjOBJ_BODY, "toast");
+  beacon_site_ = mj_name2id(m, mjOBJ_SITE, "beacon");
+  toast_qpos_ = m->jnt_qposadr[m->body_jntadr[toast_body_]];
+  Reset(0);
+}
+
+DataSpec Tabletop::Spec() const {
+  DataSpec spec;
+  spec.x_dim = Ur5Arm::kJoints + 1;
+  spec.y_shape = {3, options_.image_height, options_.image_width};
+  spec.b_dim = options_.placement == "none" ? 0 : 2;
+  spec.u_dim = Ur5Arm::kJoints + 1;
+  return spec;
+}
+
+void Tabletop::PlaceMocap(int body, const Eigen::Vector3d& position) {
+  const int mocap = scene_.model()->body_mocapid[body];
+  for (int k = 0; k < 3; ++k) scene_.data()->mocap_pos[3 * mocap + k] = position[k];
+}
+
+Eigen::Vector3d Tabletop::DrawBowlPosition(Rng& rng) const {
+  const Eigen::Vector3d plate = PlatePosition(), toast = ToastPosition();
+  const Eigen::Vector3d beacon = BeaconPosition();
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const Eigen::Vector3d bowl(rng.Uniform(kBowlMinX, kBowlMaxX),
+                               rng.Uniform(-kBowlMaxAbsY, kBowlMaxAbsY), 0.0);
+    if (PlanarDistance(bowl, plate) >= kBowlClearPlate &&
+        PlanarDistance(bowl, toast) >= kBowlClearToast &&
+        PlanarDistance(bowl, beacon) >= kBowlClearBeacon) {
+      return bowl;
+    }
+  }
+  throw std::logic_error("tabletop: no free place for the bowl (layout constants are wrong)");
+}
+
+void Tabletop::Reset(uint64_t seed) {
+  rng_.Seed(seed);
+  mjData* d = scene_.data();
+  mj_resetData(scene_.model(), d);
+  plate_side_ = rng_.Uniform() < 0.5 ? 1 : -1;
+  PlaceMocap(plate_body_, {rng_.Uniform(kPlateMinX, kPlateMaxX),
+                           plate_side_ * rng_.Uniform(kPlateMinAbsY, kPlateMaxAbsY), 0.0});
+  double* toast = d->qpos + toast_qpos_;
+  toast[0] = kToastX + rng_.Uniform(-kToastJitter, kToastJitter);
+  toast[1] = rng_.Uniform(-kToastJitter, kToastJitter);
+  toast[2] = kToastRestZ;
+  toast[3] = 1.0;
+  toast[4] = toast[5] = toast[6] = 0.0;
+  arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward, so positions below are current
+  PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
+  mj_forward(scene_.model(), d);
+  Render();
+}
+
+void Tabletop::Render() {
+  image_ = renderer_->Render(scene_, kCamera, options_.image_width, options_.image_height);
+}
+
+std::vector<float> Tabletop::ImageAsY() const {
+  // RgbImage is rows-first RGB; y is channels first, as the CNN reads it.
+  const int h = image_.height, w = image_.width;
+  std::vector<float> y(static_cast<size_t>(3) * h * w);
+  for (int r = 0; r < h; ++r) {
+    for (int c = 0; c < w; ++c) {
+      const uint8_t* px = image_.Pixel(r, c);
+      for (int ch = 0; ch < 3; ++ch) y[(static_cast<size_t>(ch) * h + r) * w + c] = px[ch];
+    }
+  }
+  return y;
+}
+
+Observation Tabletop::Observe() const {
+  Observation o;
+  for (double q : arm_->JointPositions()) o.x.push_back(static_cast<float>(q));
+  o.x.push_back(static_cast<float>(arm_->GripperOpening()));
+  o.y = ImageAsY();
+  return o;
+}
+
+void Tabletop::Step(const std::vector<float>& u) {
+  if (static_cast<int>(u.size()) != Ur5Arm::kJoints + 1) {
+    throw std::invalid_argument("tabletop action must have 7 entries");
+  }
+  Ur5Joints qd;
+  for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
+  arm_->CommandJointVelocities(qd);
+  arm_->CommandGripper(u[Ur5Arm::kJoints] > 0.5f);
+  arm_->Step(kControlPeriod_s);
+  Render();
+}
+
+std::vector<float> Tabletop::ExpertAction() const {
+  const Eigen::Vector3d grip = arm_->GripPosition();
+  const Eigen::Vector3d toast = ToastPosition();
+  const Eigen::Vector3d plate = PlatePosition();
+  const bool holding = arm_->HeldObject() == toast_body_;
+  const bool delivered = !holding && PlanarDistance(toast, plate) < kPlateRadius_m &&
+                         toast.z() < kApproachHeight_m;
+  bool close = holding;
+  Eigen::Vector3d target;
+  if (holding) {
+    if (PlanarDistance(grip, plate) > kReleaseTolerance_m) {
+      // Lift straight up first: a joint-space move from the grasp would sweep the toast along
+      // the table.
+      target = grip.z() < kLiftFirstBelow_m ? Eigen::Vector3d(grip.x(), grip.y(), kCarryHeight_m)
+                                            : plate + Eigen::Vector3d(0, 0, kCarryHeight_m);
+    } else {
+      target = plate + Eigen::Vector3d(0, 0, kReleaseHeight_m);
+      // Low over the plate: open and let the toast drop onto it.
+      if ((grip - target).norm() < kReleaseTolerance_m) close = false;
+    }
+  } else if (delivered) {
+    target = plate + Eigen::Vector3d(0, 0, kRetreatHeight_m);
+  } else if (PlanarDistance(grip, toast) > kAlignTolerance_m) {
+    target = toast + Eigen::Vector3d(0, 0, kApproachHeight_m);
+  } else {
+    target = toast;
+    close = (grip - toast).norm() < kGraspTolerance_m;
+  }
+  const Ur5Joints q = arm_->JointPositions();
+  const auto goal = arm_->SolveGraspIk(target, 0.0, q);
+  if (!goal) {
+    throw UserError("tabletop: the expert cannot reach (" + std::to_string(target.x()) + ", " +
+                    std::to_string(target.y()) + ", " + std::to_string(target.z()) + ")");
+  }
+  std::vector<float> u(Ur5Arm::kJoints + 1);
+  for (int i = 0; i < Ur5Arm::kJoints; ++i) {
+    const double v = std::clamp(kExpertGain_per_s * ((*goal)[i] - q[i]), -kExpertMaxSpeed_rad_s,
+                                kExpertMaxSpeed_rad_s);
+    u[i] = static_cast<float>(v);
+  }
+  u[Ur5Arm::kJoints] = close ? 1.0f : 0.0f;
+  return u;
+}
+
+std::vector<float> Tabletop::BeaconReading() {
+  if (options_.placement == "none") return {};
+  const Eigen::Vector3d beacon = BeaconPosition();
+  std::vector<float> b(2);
+  for (int k = 0; k < 2; ++k) {
+    b[k] = static_cast<float>(beacon[k] + options_.noise_sigma_m * rng_.Normal());
+  }
+  return b;
+}
+
+PlaySample Tabletop::SamplePlay() {
+  // The teacher moves the bowl around while the beacon reports the plate; the robot stays put.
+  const Eigen::Vector3d bowl = BowlPosition();
+  PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
+  mj_forward(scene_.model(), scene_.data());
+  Render();
+  const Observation o = Observe();
+  PlaySample sample{o.x, o.y, BeaconReading()};
+  PlaceMocap(bowl_body_, bowl);
+  mj_forward(scene_.model(), scene_.data());
+  Render();
+  return sample;
+}
+
+double Tabletop::EpisodeMetric() const { return PlanarDistance(ToastPosition(), PlatePosition()); }
+
+std::string Tabletop::MetricName() const { return "final toast-to-plate distance (m)"; }
+
+bool Tabletop::TaskSucceeded() const {
+  const Eigen::Vector3d toast = ToastPosition();
+  return arm_->HeldObject() != toast_body_ &&
+         PlanarDistance(toast, PlatePosition()) < kPlateRadius_m && toast.z() < 0.05;
+}
+
+double Tabletop::ToastToBowlDistance() const { return PlanarDistance(ToastPosition(), BowlPosition()); }
+
+Eigen::Vector3d Tabletop::ToastPosition() const { return Vec(scene_.data()->xpos + 3 * toast_body_); }
+Eigen::Vector3d Tabletop::PlatePosition() const {
+  return Vec(scene_.data()->mocap_pos + 3 * scene_.model()->body_mocapid[plate_body_]);
+}
+Eigen::Vector3d Tabletop::BowlPosition() const {
+  return Vec(scene_.data()->mocap_pos + 3 * scene_.model()->body_mocapid[bowl_body_]);
+}
+Eigen::Vector3d Tabletop::BeaconPosition() const {
+  return Vec(scene_.data()->site_xpos + 3 * beacon_site_);
+}
+
+}  // namespace recon::worlds

@@ -1,0 +1,100 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/core/image.h"
+#include "engine/core/rng.h"
+#include "engine/worlds/mujoco_model.h"
+#include "engine/worlds/scene_renderer.h"
+#include "engine/worlds/ur5_arm.h"
+#include "engine/worlds/world.h"
+
+namespace recon::worlds {
+
+/// How a Tabletop world is configured.
+struct TabletopOptions {
+  /// "none" (the Baseline, d = 0) or "plate" (the beacon beside the plate: its x, y on the table
+  /// in metres, d = 2).
+  std::string placement = "plate";
+  /// Standard deviation of Gaussian noise on each beacon coordinate, metres. A DWM1001 is good to
+  /// about 10 cm (REFERENCE.md section 4).
+  double noise_sigma_m = 0.0;
+  /// Camera image size; the paper's policy saw small images, 64 x 64 by default.
+  int image_width = 64;
+  int image_height = 64;
+};
+
+/// The paper's real-robot task in the simulated cell (assets/mjcf/tabletop.xml): pick up the
+/// toast and drop it on the blue plate, which is at the left or the right edge of the table, while
+/// a red bowl stands anywhere. The robot sees its joints and the top-down camera image; the beacon
+/// beside the plate is there only while teaching.
+///
+/// x = 6 joint angles and the gripper opening (7); y = the camera image, channels first, values
+/// 0-255 (3 x H x W); b = the plate beacon's table position (2); u = 6 joint velocities (rad/s)
+/// and a gripper command (close when > 0.5) (7). Steps are 0.1 s (the paper's 10 Hz); an episode
+/// is 150 steps (the paper's demonstrations had about 150 samples).
+class Tabletop : public World {
+ public:
+  static constexpr int kEpisodeLength = 150;
+  static constexpr double kControlPeriod_s = 0.1;
+  /// The paper recorded 4 s of play data at 10 Hz: 40 (y, b) pairs.
+  static constexpr int kPlayPerScenario = 40;
+  static constexpr double kPlateRadius_m = 0.09;
+
+  /// Throws UserError for an unknown placement, bad noise or image size, or a null renderer.
+  Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer> renderer);
+
+  std::string Name() const override { return "tabletop"; }
+  DataSpec Spec() const override;
+  int EpisodeLength() const override { return kEpisodeLength; }
+  void Reset(uint64_t seed) override;
+  Observation Observe() const override;
+  void Step(const std::vector<float>& u) override;
+  std::vector<float> ExpertAction() const override;
+  std::vector<float> BeaconReading() override;
+  PlaySample SamplePlay() override;
+  int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
+  /// Final distance from the toast to the plate centre in the table plane, metres.
+  double EpisodeMetric() const override;
+  bool HigherIsBetter() const override { return false; }
+  std::string MetricName() const override;
+  bool HasSuccess() const override { return true; }
+  /// The toast lies on the plate, released.
+  bool TaskSucceeded() const override;
+
+  static const std::vector<std::string>& Placements();
+
+  /// The last camera image (rendered after every Reset and Step).
+  const RgbImage& CameraImage() const { return image_; }
+  Eigen::Vector3d ToastPosition() const;
+  Eigen::Vector3d PlatePosition() const;
+  Eigen::Vector3d BowlPosition() const;
+  Eigen::Vector3d BeaconPosition() const;
+  /// Which edge the plate is at in this scenario: +1 left (+y), -1 right.
+  int PlateSide() const { return plate_side_; }
+  /// Distance from the toast to the bowl centre in the plane (a Baseline failure goes there).
+  double ToastToBowlDistance() const;
+  MujocoModel& scene() { return scene_; }
+  Ur5Arm& arm() { return *arm_; }
+
+ private:
+  void PlaceMocap(int body, const Eigen::Vector3d& position);
+  Eigen::Vector3d DrawBowlPosition(Rng& rng) const;
+  void Render();
+  std::vector<float> ImageAsY() const;
+
+  TabletopOptions options_;
+  std::unique_ptr<SceneRenderer> renderer_;
+  MujocoModel scene_;
+  std::unique_ptr<Ur5Arm> arm_;
+  Rng rng_{0};
+  int plate_body_ = -1, bowl_body_ = -1, toast_body_ = -1, beacon_site_ = -1;
+  int toast_qpos_ = -1;
+  int plate_side_ = 1;
+  RgbImage image_;
+};
+
+}  // namespace recon::worlds
