@@ -9,6 +9,8 @@
 // BM_BinTransferReset: drawing, dropping and settling a layout plus the expert's IK.
 // BM_RecordDemonstration: what `recon record` pays per demonstration: reset, 3 play samples and
 //   a 60-step expert episode; sim_s_per_s counts the episode's simulated time.
+// Rates are per CPU second (Google Benchmark's default), which stays comparable when other jobs
+// share the two cores; the Time column is wall time.
 
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>

@@ -99,20 +99,35 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.baseline_steps = flags.baseline_steps;
   config.play_per_scenario = flags.play;
+  if (flags.world == "bintransfer" || flags.world == "tabletop") {
+    // A six-joint arm with grasp phases needs a wider policy than the authors' 2-D one (32, 32);
+    // measured on tabletop: with (32, 32) no rollout from 4 demos grasped the toast in time.
+    config.network.policy_hidden = {128, 128};
+    // The authors' restart thresholds are calibrated to Dynamic 2D's losses; the arm's action
+    // scale differs, so the rule would retrain every run five times for nothing.
+    if (command.get_option("--restart")->count() == 0) config.train.restart_rule = false;
+  }
   if (worlds::WorldNeedsRenderer(flags.world)) {
     config.cell.renderer_factory = render::MujocoRendererFactory();
     config.cell.image_size = flags.image_size;
+    // Camera pixels arrive as 0-255; the CNN trains better on 0-1 (the authors' raw 0-255 was
+    // for their 32 x 32 Dynamic 2D drawings, which the dynamic2d world keeps).
+    config.network.image_scale = 1.0f / 255.0f;
   }
   return config;
 }
 
 void PrintTable(const std::vector<experiments::ConditionSummary>& summaries,
                 const experiments::ExperimentResult& result) {
-  std::printf("\n%-16s %6s %9s %7s %4s %6s  %s\n", "condition", "demos", "mean", "sem", "n",
-              "steps", result.higher_is_better ? "(higher is better)" : "(lower is better)");
+  const bool success = result.has_success;
+  std::printf("\n%-16s %6s %9s %7s %4s %6s%s  %s\n", "condition", "demos", "mean", "sem", "n",
+              "steps", success ? "  success" : "",
+              result.higher_is_better ? "(higher is better)" : "(lower is better)");
   for (const auto& s : summaries) {
-    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s\n", s.condition.c_str(), s.demos, s.mean, s.sem,
-                s.n, s.train_steps,
+    char rate[32] = "";
+    if (success) std::snprintf(rate, sizeof(rate), "  %6.0f%%", 100.0 * s.success_rate);
+    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s%s\n", s.condition.c_str(), s.demos, s.mean,
+                s.sem, s.n, s.train_steps, rate,
                 s.diverged > 0 ? ("  (" + std::to_string(s.diverged) + " diverged)").c_str() : "");
   }
   std::printf("%-16s %6s %9.3f\n", "expert", "", result.expert_metric);

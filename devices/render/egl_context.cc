@@ -5,8 +5,6 @@
 #include <GL/gl.h>
 
 #include <cstdio>
-#include <map>
-#include <mutex>
 #include <string_view>
 #include <vector>
 
@@ -67,36 +65,11 @@ bool HasExtension(const char* extensions, std::string_view name) {
 
 // EGL hands out one EGLDisplay per (platform, native display) for the whole process, and
 // eglTerminate on it would pull the display out from under every other context on it (say the
-// simulated camera's, while the UI's lives on). So initialisation is reference-counted here.
-// Never destroyed, so that a context outliving static destruction (say, in a static) still finds
-// its count.
-struct DisplayUsers {
-  std::mutex mutex;
-  std::map<EGLDisplay, int> count;
-};
-DisplayUsers& Users() {
-  static auto* users = new DisplayUsers;
-  return *users;
-}
-
-/// eglInitialize with reference counting; returns false (EGL error left set) on failure.
-bool AcquireDisplay(EGLDisplay display, EGLint* major, EGLint* minor) {
-  DisplayUsers& users = Users();
-  std::lock_guard lock(users.mutex);
-  if (eglInitialize(display, major, minor) != EGL_TRUE) return false;
-  ++users.count[display];
-  return true;
-}
-
-void ReleaseDisplay(EGLDisplay display) {
-  DisplayUsers& users = Users();
-  std::lock_guard lock(users.mutex);
-  const auto it = users.count.find(display);
-  if (it == users.count.end()) return;
-  if (--it->second == 0) {
-    users.count.erase(it);
-    eglTerminate(display);
-  }
+// simulated camera's, while the UI's lives on). A display is therefore initialised once and kept
+// until the process exits; that also spares each later context re-loading Mesa's driver.
+bool InitializeDisplay(EGLDisplay display) {
+  EGLint major = 0, minor = 0;
+  return eglInitialize(display, &major, &minor) == EGL_TRUE;
 }
 
 /// An initialised display and the platform it came from.
@@ -120,14 +93,12 @@ Display OpenDisplay(std::vector<std::string>& attempts) {
     attempts.push_back("EGL lacks EGL_EXT_platform_base (eglGetPlatformDisplayEXT)");
     return {};
   }
-  EGLint major = 0, minor = 0;
-
   if (HasExtension(client_extensions, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay display =
         get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY) {
       attempts.push_back(Failure("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)"));
-    } else if (!AcquireDisplay(display, &major, &minor)) {
+    } else if (!InitializeDisplay(display)) {
       attempts.push_back(Failure("eglInitialize(surfaceless display)"));
     } else {
       return {display, "surfaceless"};
@@ -156,7 +127,7 @@ Display OpenDisplay(std::vector<std::string>& attempts) {
     if (display == EGL_NO_DISPLAY) {
       attempts.push_back(
           Failure("eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, " + which + ")"));
-    } else if (!AcquireDisplay(display, &major, &minor)) {
+    } else if (!InitializeDisplay(display)) {
       attempts.push_back(Failure("eglInitialize(" + which + ")"));
     } else {
       return {display, which};
@@ -225,7 +196,6 @@ EglContext::EglContext() {
   display_ = display.display;
   EGLContext context = CreateContext(display.display, attempts);
   if (context == EGL_NO_CONTEXT) {
-    ReleaseDisplay(display.display);
     throw UserError("cannot create a headless OpenGL context on the " + display.platform +
                     " EGL display: " + Joined(attempts));
   }
@@ -238,21 +208,19 @@ EglContext::EglContext() {
                    GlString(GL_RENDERER);
   } catch (const UserError& e) {
     eglDestroyContext(display.display, context);
-    ReleaseDisplay(display.display);
     throw UserError("cannot use the headless OpenGL context on the " + display.platform +
                     " EGL display: " + e.what());
   }
 }
 
 EglContext::~EglContext() {
-  // A context current on this thread is only destroyed once released; release it so that the
-  // display can actually be torn down (and no dangling current context remains).
+  // A context current on this thread is only destroyed once released; release it so that no
+  // dangling current context remains.
   const EGLenum api = eglQueryAPI();
   eglBindAPI(EGL_OPENGL_API);
   if (IsCurrent()) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   eglBindAPI(api);
   eglDestroyContext(display_, context_);
-  ReleaseDisplay(display_);
 }
 
 bool EglContext::IsCurrent() const { return eglGetCurrentContext() == context_; }

@@ -174,8 +174,13 @@ ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver
     const std::unique_ptr<worlds::World> probe = make_world();
     out.metric_name = probe->MetricName();
     out.higher_is_better = probe->HigherIsBetter();
-    out.has_success = probe->HasSuccess();
+    // When the expert drives (action scoring), success says nothing about the policy.
+    out.has_success = probe->HasSuccess() && !probe->ScoresActions();
     out.metric_key = probe->MetricKey();
+    out.step_seconds = probe->StepSeconds();
+    out.episode_length = probe->EpisodeLength();
+    out.play_per_scenario = config.play_per_scenario >= 0 ? config.play_per_scenario
+                                                          : probe->PlaySamplesPerScenario();
     const std::vector<ScenarioOutcome> expert = EvaluateExpert(make_world, test_seeds);
     out.expert_metric = Mean(Metrics(expert));
     out.expert_success_rate = SuccessRate(expert);

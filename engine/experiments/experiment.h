@@ -65,6 +65,9 @@ struct ExperimentResult {
   double expert_metric = 0;  ///< the expert's mean score on the test scenarios
   std::string metric_key;    ///< the metric's short name in summary.json, e.g. "distance"
   bool has_success = false;  ///< the world reports success (runs carry a success rate)
+  double step_seconds = 0;   ///< World::StepSeconds(): > 0 makes a teaching-time ledger
+  int episode_length = 0;
+  int play_per_scenario = 0;  ///< play samples per demonstration scenario actually used
   double expert_success_rate = 0;
 };
 

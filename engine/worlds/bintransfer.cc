@@ -377,7 +377,7 @@ double BinTransfer::EpisodeMetric() const {
 }
 
 std::string BinTransfer::MetricName() const {
-  return "final distance from the target object to the right bin's centre (m, lower is better)";
+  return "action MSE against the expert ((rad/s)^2, lower is better)";
 }
 
 bool BinTransfer::TaskSucceeded() const {

@@ -97,11 +97,16 @@ class BinTransfer : public World {
   /// now; the scenario is not changed.
   PlaySample SamplePlay() override;
   int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
-  /// Distance from the target's centre to the right bin's centre in the plane, metres.
+  /// Distance from the target's centre to the right bin's centre in the plane, metres: the score
+  /// of a rollout. Experiments instead score actions along the expert's demonstrations (the
+  /// paper's metric, ScoresActions()), which MetricName describes.
   double EpisodeMetric() const override;
   bool HigherIsBetter() const override { return false; }
   std::string MetricName() const override;
+  std::string MetricKey() const override { return "action_mse"; }
+  bool ScoresActions() const override { return true; }
   bool HasSuccess() const override { return true; }
+  double StepSeconds() const override { return 0.1; }
   /// The target is released and lies inside the right bin (centre within its inner footprint,
   /// below its wall top).
   bool TaskSucceeded() const override;

@@ -40,8 +40,9 @@ class Tabletop : public World {
  public:
   static constexpr int kEpisodeLength = 150;
   static constexpr double kControlPeriod_s = 0.1;
-  /// The paper recorded 4 s of play data at 10 Hz: 40 (y, b) pairs.
-  static constexpr int kPlayPerScenario = 40;
+  /// The paper recorded 4 s of play data at 10 Hz (40 (y, b) pairs) for 4 demonstrations: 10 per
+  /// demonstration scenario.
+  static constexpr int kPlayPerScenario = 10;
   static constexpr double kPlateRadius_m = 0.09;
 
   /// Throws UserError for an unknown placement, bad noise or image size, or a null renderer.
@@ -62,6 +63,7 @@ class Tabletop : public World {
   bool HigherIsBetter() const override { return false; }
   std::string MetricName() const override;
   bool HasSuccess() const override { return true; }
+  double StepSeconds() const override { return kControlPeriod_s; }
   /// The toast lies on the plate, released.
   bool TaskSucceeded() const override;
 

@@ -56,6 +56,9 @@ class World {
   virtual std::string MetricName() const = 0;
   /// The metric's short name for tables and JSON, e.g. "distance", "reward", "action_mse".
   virtual std::string MetricKey() const { return HigherIsBetter() ? "reward" : "distance"; }
+  /// Seconds of teaching one step stands for (the control period of a robot world, whose
+  /// demonstrations cost the teacher real time); 0 for the abstract 2-D worlds.
+  virtual double StepSeconds() const { return 0.0; }
   /// True for tasks with a notion of success (the robot worlds), which experiments then report as
   /// a success rate beside the metric.
   virtual bool HasSuccess() const { return false; }

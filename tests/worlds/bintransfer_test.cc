@@ -1,7 +1,6 @@
 #include "engine/worlds/bintransfer.h"
 
 #include <gtest/gtest.h>
-#include <mujoco/mujoco.h>
 
 #include <algorithm>
 #include <atomic>
@@ -148,7 +147,7 @@ TEST(BinTransferTest, ObjectsStartInsideTheLeftBinApartWithTheRightMostAsTarget)
 // 43.0 steps on average (at most 46) of the 60. To keep this test at a few seconds it runs two
 // worlds on two threads and ends an episode once the target has lain in the right bin for 1 s:
 // the expert has released it for good and commands zero from then on, so nothing moves again
-// (ExpertFinishesThenStandsStill... runs whole episodes).
+// (ExpertFinishesThenStandsStillWithTheTargetInTheRightBin runs a whole episode).
 TEST(BinTransferTest, ExpertSucceedsInAtLeast95PercentOf200Layouts) {
   constexpr int kSeeds = 200;
   constexpr int kSettledSteps = 10;
@@ -194,6 +193,7 @@ TEST(BinTransferTest, ExpertFinishesThenStandsStillWithTheTargetInTheRightBin) {
   const double inside = BinTransfer::kBinInnerHalfWidth_m - BinTransfer::kWallClearance_m + 0.002;
   for (int i = 0; i < kNumObjects; ++i) {
     if (i == world.TargetIndex()) continue;
+    EXPECT_LE(std::abs(world.ObjectPosition(i).x() - BinTransfer::kLeftBinX_m), inside);
     EXPECT_LE(std::abs(world.ObjectPosition(i).y() - BinTransfer::kLeftBinY_m), inside);
   }
 }
@@ -224,7 +224,7 @@ TEST(BinTransferTest, GripperClosesOnlyAtTheTarget) {
 TEST(BinTransferTest, PositionBeaconIsTheTargetPosition) {
   BinTransfer world("position", 0.0);
   world.Reset(8);
-  for (int t = 0; t < world.EpisodeLength(); t += 1) {
+  for (int t = 0; t < world.EpisodeLength(); ++t) {
     const std::vector<float> b = world.BeaconReading();
     const std::vector<float> y = world.Observe().y;
     ASSERT_EQ(b.size(), 3u);
@@ -236,7 +236,7 @@ TEST(BinTransferTest, PositionBeaconIsTheTargetPosition) {
 TEST(BinTransferTest, DistanceBeaconIsTheGripToTargetDistance) {
   BinTransfer world("distance", 0.0);
   world.Reset(9);
-  for (int t = 0; t < world.EpisodeLength(); t += 1) {
+  for (int t = 0; t < world.EpisodeLength(); ++t) {
     const std::vector<float> b = world.BeaconReading();
     ASSERT_EQ(b.size(), 1u);
     const double expected =

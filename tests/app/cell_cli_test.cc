@@ -1,0 +1,159 @@
+// The simulated cell's commands, run through the real `recon` binary.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout and stderr together
+};
+
+CommandResult RunRecon(const std::string& args) {
+  const std::string command = std::string(RECON_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+fs::path FreshDir(const std::string& name) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("cell_cli_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+nlohmann::json ReadJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+TEST(CellCliTest, RenderWritesTheTabletopCameraImage) {
+  const fs::path out = FreshDir("render") / "tabletop.png";
+  const CommandResult r =
+      RunRecon("render --scene tabletop --seed 3 --width 320 --height 240 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream png(out, std::ios::binary);
+  std::array<unsigned char, 24> header{};
+  png.read(reinterpret_cast<char*>(header.data()), header.size());
+  EXPECT_EQ(header[1], 'P');
+  EXPECT_EQ(header[2], 'N');
+  EXPECT_EQ(header[3], 'G');
+  // IHDR width and height, big-endian.
+  EXPECT_EQ((header[18] << 8) | header[19], 320);
+  EXPECT_EQ((header[22] << 8) | header[23], 240);
+}
+
+TEST(CellCliTest, RenderOfAMissingOrBrokenSceneIsAClearError) {
+  const fs::path dir = FreshDir("render_bad");
+  CommandResult r = RunRecon("render --scene kitchen --out " + (dir / "x.png").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("unknown scene 'kitchen'"));
+  EXPECT_THAT(r.output, HasSubstr("tabletop"));
+
+  r = RunRecon("render --scene " + (dir / "missing.xml").string() + " --out " +
+               (dir / "x.png").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("does not exist"));
+
+  const fs::path broken = dir / "broken.xml";
+  std::ofstream(broken) << "<mujoco><worldbody><geom type=\"box\" size=\"1\"></worldbody>";
+  r = RunRecon("render --scene " + broken.string() + " --out " + (dir / "x.png").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(broken.string()));
+  EXPECT_THAT(r.output, HasSubstr("invalid"));
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(CellCliTest, CalibrateSimPrintsTheFitAndSavesIt) {
+  const fs::path out = FreshDir("calibrate") / "calibration.json";
+  const CommandResult r = RunRecon("calibrate --sim --points 8 --seed 4 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("RMSE [0-9]+\\.[0-9]+ m"));
+  EXPECT_THAT(r.output, HasSubstr("PASS"));
+  EXPECT_THAT(r.output, HasSubstr("hidden UWB frame recovered"));
+  const nlohmann::json saved = ReadJson(out);
+  EXPECT_TRUE(saved.contains("version"));
+}
+
+TEST(CellCliTest, CalibrateWithoutSimOrWithTooFewPointsIsRefused) {
+  CommandResult r = RunRecon("calibrate --points 8");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--sim"));
+  r = RunRecon("calibrate --sim --points 2");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = RunRecon("calibrate --sim --dim 4d");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--dim"));
+}
+
+TEST(CellCliTest, BinTransferExperimentScoresActionError) {
+  const fs::path out = FreshDir("bintransfer");
+  const CommandResult r = RunRecon(
+      "experiment bintransfer --runs 1 --tests 3 --demos 2 --steps 40 --baseline-steps 30 "
+      "--conditions baseline,recon-p-play --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  EXPECT_EQ(summary["metric"]["key"], "action_mse");
+  const auto& baseline = summary["conditions"]["baseline"];
+  EXPECT_GT(baseline["action_mse"].get<double>(), 0.0);
+  EXPECT_EQ(baseline["n"], 1);
+  EXPECT_TRUE(summary["conditions"].contains("recon-p-play"));
+  EXPECT_FALSE(baseline.contains("success_rate")) << "the expert drives: no policy success";
+  EXPECT_TRUE(summary.contains("teaching_time"));
+  EXPECT_TRUE(fs::exists(out / "bintransfer.png"));
+}
+
+TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
+  const fs::path out = FreshDir("tabletop");
+  const CommandResult r = RunRecon(
+      "experiment tabletop --runs 1 --tests 2 --demos 1,2 --steps 20 --baseline-steps 20 "
+      "--image-size 32 --seed 3 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("success"));
+  const nlohmann::json summary = ReadJson(out / "summary.json");
+  for (const char* demos : {"1", "2"}) {
+    for (const char* condition : {"baseline", "recon-play"}) {
+      const auto& block = summary["by_demos"][demos]["conditions"][condition];
+      ASSERT_TRUE(block.is_object()) << demos << " " << condition;
+      for (const char* key : {"success_rate", "distance", "sem", "n"}) {
+        EXPECT_TRUE(block.contains(key)) << key;
+      }
+      EXPECT_GE(block["success_rate"].get<double>(), 0.0);
+      EXPECT_LE(block["success_rate"].get<double>(), 1.0);
+    }
+  }
+  const auto& time = summary["teaching_time"];
+  EXPECT_DOUBLE_EQ(time["seconds_per_demonstration"].get<double>(), 15.0);
+  const auto& two = time["by_demos"]["2"];
+  // RECON (Play) costs the demonstrations plus two beacon placements plus the play data.
+  EXPECT_DOUBLE_EQ(two["baseline"]["total_s"].get<double>(), 30.0);
+  EXPECT_DOUBLE_EQ(two["recon-play"]["total_s"].get<double>(), 30.0 + 4.6 + 2.0);
+  EXPECT_TRUE(fs::exists(out / "success.png"));
+  EXPECT_TRUE(fs::exists(out / "data_efficiency.png"));
+}
+
+TEST(CellCliTest, TabletopImageSizeOutOfRangeIsRejected) {
+  const CommandResult r = RunRecon("experiment tabletop --image-size 8");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--image-size"));
+}
+
+}  // namespace

@@ -1,0 +1,176 @@
+// The tabletop world with the real offscreen renderer: what the camera shows, the scripted
+// expert, determinism, beacons and play data.
+
+#include "engine/worlds/tabletop.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "devices/render/mujoco_renderer.h"
+#include "devices/tags/tag_detector.h"
+#include "engine/core/error.h"
+#include "engine/worlds/world_factory.h"
+
+namespace recon::worlds {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::unique_ptr<Tabletop> MakeTabletop(const std::string& placement = "plate",
+                                       double noise = 0.0, int size = 64) {
+  TabletopOptions options;
+  options.placement = placement;
+  options.noise_sigma_m = noise;
+  options.image_width = options.image_height = size;
+  return std::make_unique<Tabletop>(options, std::make_unique<render::MujocoRenderer>());
+}
+
+// Mean column (0..1 of the width) of the strongly blue pixels in the image's upper part (the
+// plate stands at x 0.45-0.68 m, above the middle row; the blue-grey arm is in the lower part).
+double BlueColumn(const RgbImage& image) {
+  double sum = 0;
+  int count = 0;
+  for (int r = 0; r < image.height * 58 / 100; ++r) {
+    for (int c = 0; c < image.width; ++c) {
+      const uint8_t* p = image.Pixel(r, c);
+      if (p[2] > 185 && p[0] < 110 && p[1] < 140) {  // the plate, not the blue-grey arm
+        sum += (c + 0.5) / image.width;
+        ++count;
+      }
+    }
+  }
+  return count > 0 ? sum / count : -1.0;
+}
+
+TEST(TabletopTest, SpecIsJointsImageBeaconAndJointVelocitiesWithGripper) {
+  auto world = MakeTabletop();
+  EXPECT_EQ(world->Spec().ToString(), "x 7, y 3x64x64, b 2, u 7");
+  EXPECT_EQ(MakeTabletop("none", 0.0, 48)->Spec().ToString(), "x 7, y 3x48x48, b 0, u 7");
+  world->Reset(5);
+  const Observation o = world->Observe();
+  EXPECT_EQ(o.x.size(), 7u);
+  EXPECT_EQ(o.y.size(), 3u * 64 * 64);
+}
+
+TEST(TabletopTest, CameraSeesThePlateOnItsSide) {
+  auto world = MakeTabletop();
+  int left = 0, right = 0;
+  for (uint64_t seed = 1; seed <= 12; ++seed) {  // seeds 1-12 cover both sides
+    world->Reset(seed);
+    const double column = BlueColumn(world->CameraImage());
+    ASSERT_GE(column, 0.0) << "no plate in view, seed " << seed;
+    // World +y (the plate's left side) is the image's left.
+    if (world->PlateSide() > 0) {
+      EXPECT_LT(column, 0.4) << "seed " << seed;
+      ++left;
+    } else {
+      EXPECT_GT(column, 0.6) << "seed " << seed;
+      ++right;
+    }
+  }
+  EXPECT_GT(left, 0);
+  EXPECT_GT(right, 0);
+}
+
+TEST(TabletopTest, EveryAprilTagIsDetectedInADetailedFrame) {
+  auto world = MakeTabletop();
+  world->Reset(3);
+  render::MujocoRenderer renderer;
+  const RgbImage frame = renderer.Render(world->scene(), "top", 640, 480);
+  tags::TagDetector detector;
+  std::vector<int> ids;
+  for (const auto& d : detector.Detect(frame)) ids.push_back(d.id);
+  EXPECT_THAT(ids, ::testing::UnorderedElementsAre(0, 1, 2, 3, 10));
+}
+
+TEST(TabletopTest, ExpertPutsTheToastOnThePlate) {
+  auto world = MakeTabletop("none");
+  int succeeded = 0;
+  for (uint64_t seed = 100; seed < 110; ++seed) {  // seeds 100-109
+    world->Reset(seed);
+    EXPECT_FALSE(world->TaskSucceeded());
+    for (int t = 0; t < world->EpisodeLength(); ++t) world->Step(world->ExpertAction());
+    succeeded += world->TaskSucceeded() ? 1 : 0;
+    EXPECT_LT(world->EpisodeMetric(), Tabletop::kPlateRadius_m) << "seed " << seed;
+  }
+  EXPECT_EQ(succeeded, 10);
+}
+
+TEST(TabletopTest, SameSeedReproducesImagesAndExpertBitForBit) {
+  auto a = MakeTabletop();
+  auto b = MakeTabletop();
+  a->Reset(42);
+  b->Reset(42);
+  for (int t = 0; t < 30; ++t) {
+    ASSERT_EQ(a->Observe().y, b->Observe().y) << "step " << t;
+    ASSERT_EQ(a->ExpertAction(), b->ExpertAction()) << "step " << t;
+    a->Step(a->ExpertAction());
+    b->Step(b->ExpertAction());
+  }
+  b->Reset(43);
+  EXPECT_NE(a->BowlPosition(), b->BowlPosition());
+}
+
+TEST(TabletopTest, BeaconReportsThePlateBeaconWithTheRequestedNoise) {
+  auto exact = MakeTabletop("plate", 0.0);
+  exact->Reset(7);
+  const std::vector<float> b = exact->BeaconReading();
+  ASSERT_EQ(b.size(), 2u);
+  EXPECT_NEAR(b[0], exact->BeaconPosition().x(), 1e-6);
+  EXPECT_NEAR(b[1], exact->BeaconPosition().y(), 1e-6);
+  EXPECT_LT((exact->BeaconPosition() - exact->PlatePosition()).head<2>().norm(), 0.2);
+
+  auto noisy = MakeTabletop("plate", 0.1);
+  noisy->Reset(7);
+  double sum_sq = 0;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i) {
+    const std::vector<float> r = noisy->BeaconReading();
+    sum_sq += std::pow(r[0] - noisy->BeaconPosition().x(), 2);
+  }
+  EXPECT_NEAR(std::sqrt(sum_sq / n), 0.1, 0.01);
+  EXPECT_TRUE(MakeTabletop("none")->BeaconReading().empty());
+}
+
+TEST(TabletopTest, PlayMovesTheBowlWhileTheBeaconReportsThePlate) {
+  auto world = MakeTabletop();
+  world->Reset(9);
+  const Eigen::Vector3d bowl = world->BowlPosition();
+  const std::vector<float> image = world->Observe().y;
+  const PlaySample play = world->SamplePlay();
+  EXPECT_EQ(play.x.size(), 7u);
+  EXPECT_EQ(play.y.size(), image.size());
+  EXPECT_NE(play.y, image) << "the bowl moved in the play image";
+  ASSERT_EQ(play.b.size(), 2u);
+  EXPECT_NEAR(play.b[0], world->BeaconPosition().x(), 1e-6);
+  // The scenario itself is unchanged.
+  EXPECT_EQ(world->BowlPosition(), bowl);
+  EXPECT_EQ(world->Observe().y, image);
+}
+
+TEST(TabletopTest, BadOptionsAreUserErrors) {
+  TabletopOptions options;
+  options.placement = "bowl";
+  try {
+    Tabletop world(options, std::make_unique<render::MujocoRenderer>());
+    FAIL() << "expected UserError";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("none, plate"));
+  }
+  options.placement = "plate";
+  EXPECT_THROW(Tabletop(options, nullptr), UserError);
+  options.image_width = 8;
+  EXPECT_THROW(Tabletop(options, std::make_unique<render::MujocoRenderer>()), UserError);
+}
+
+TEST(TabletopTest, FactoryBuildsItWithARendererFactory) {
+  CellResources cell;
+  cell.renderer_factory = render::MujocoRendererFactory();
+  cell.image_size = 32;
+  auto world = MakeWorld("tabletop", "plate", 0.0, false, cell);
+  EXPECT_EQ(world->Spec().ToString(), "x 7, y 3x32x32, b 2, u 7");
+  EXPECT_TRUE(world->HasSuccess());
+}
+
+}  // namespace
+}  // namespace recon::worlds
