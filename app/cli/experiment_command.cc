@@ -106,6 +106,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     // The authors' restart thresholds are calibrated to Dynamic 2D's losses; the arm's action
     // scale differs, so the rule would retrain every run five times for nothing.
     if (command.get_option("--restart")->count() == 0) config.train.restart_rule = false;
+    // Halving the Baseline's steps is the authors' Dynamic 2D habit; here both train as long.
+    if (command.get_option("--baseline-steps")->count() == 0) {
+      config.baseline_steps = config.train.steps;
+    }
   }
   if (worlds::WorldNeedsRenderer(flags.world)) {
     config.cell.renderer_factory = render::MujocoRendererFactory();

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "devices/render/mujoco_renderer.h"
+#include "devices/sim/hidden_uwb_frame.h"
 #include "devices/tags/pinhole_camera.h"
 #include "devices/tags/table_locator.h"
 #include "devices/tags/tag_detector.h"
@@ -33,18 +34,6 @@ constexpr uint64_t kFrameStream = 1, kPoseStream = 2, kUwbStream = 3;
 
 Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
-calib::RigidTransform DrawHiddenFrame(Rng& rng) {
-  // The anchors' frame is wherever the installer put it: any heading, the table somewhere
-  // inside the 2.4 x 1.8 m anchor rectangle, and the anchors' zero 0.7-0.8 m below the table top.
-  calib::RigidTransform t;
-  const double yaw = rng.Uniform(-M_PI, M_PI);
-  t.rotation = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Vector3d table_centre(0.55, 0.0, 0.0);
-  const Eigen::Vector3d where(rng.Uniform(1.0, 1.4), rng.Uniform(0.7, 1.1), rng.Uniform(0.7, 0.8));
-  t.translation = where - t.rotation * table_centre;
-  return t;
-}
-
 }  // namespace
 
 SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& options,
@@ -54,7 +43,7 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   SimCalibrationResult result;
   Rng frame_rng(Rng::Derive(options.seed, kFrameStream));
   Rng pose_rng(Rng::Derive(options.seed, kPoseStream));
-  result.hidden_table_to_uwb = DrawHiddenFrame(frame_rng);
+  result.hidden_table_to_uwb = sim::DrawHiddenUwbFrame(frame_rng);
 
   worlds::MujocoModel scene = worlds::LoadScene("tabletop");
   worlds::PaintTagTextures(scene);

@@ -43,9 +43,9 @@ class EglContext {
   std::string description_;
 };
 
-/// Makes `context` current for a scope, then gives the thread back the context (of any API) it
-/// had before. When the thread had none, `context` stays current, so a thread that only renders
-/// through one context pays for a single eglMakeCurrent in its life.
+/// Makes `context` current for a scope, then gives the thread back the desktop-GL context and the
+/// bound client API it had before. When the thread had no context, `context` stays current, so a
+/// thread that only renders through one context pays for a single eglMakeCurrent in its life.
 class ScopedCurrent {
  public:
   /// Throws UserError like EglContext::MakeCurrent.

@@ -164,7 +164,8 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
     throw std::runtime_error("MuJoCo has no offscreen buffer for scene \"" + ModelName(m) + "\"");
   }
   mjr_render(viewport, &s.scene, &s.context);
-  // Rows of 3 * width bytes are not 4-byte aligned for every width; GL pads them by default.
+  // Rows of 3 * width bytes are not 4-byte aligned for every width, and OpenGL pads read rows to
+  // 4 bytes by default; MuJoCo 2.2 happens to set 1 itself, the buffer size below relies on it.
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   const size_t row_bytes = static_cast<size_t>(width) * 3;
   s.bottom_up.resize(row_bytes * height);

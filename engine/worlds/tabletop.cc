@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
@@ -30,10 +31,12 @@ constexpr double kCarryHeight_m = 0.12;
 constexpr double kLiftFirstBelow_m = 0.08;
 constexpr double kReleaseHeight_m = 0.05;
 constexpr double kRetreatHeight_m = 0.25;
+constexpr double kRetreatTolerance_m = 0.03;
 constexpr double kAlignTolerance_m = 0.012;
-constexpr double kGraspTolerance_m = 0.008;
+constexpr double kDescentTolerance_m = 0.03;
+constexpr double kGraspTolerance_m = 0.015;
 constexpr double kReleaseTolerance_m = 0.02;
-constexpr double kExpertGain_per_s = 1.2;
+constexpr double kExpertGain_per_s = 2.5;
 constexpr double kExpertMaxSpeed_rad_s = 0.4;
 
 Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
@@ -118,7 +121,24 @@ void Tabletop::Reset(uint64_t seed) {
   arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward, so positions below are current
   PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
   mj_forward(scene_.model(), d);
+  CheckReachable();
   Render();
+}
+
+void Tabletop::CheckReachable() const {
+  const Eigen::Vector3d toast = ToastPosition(), plate = PlatePosition();
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  const std::vector<Eigen::Vector3d> waypoints = {toast, toast + kApproachHeight_m * up,
+                                                  plate + kCarryHeight_m * up,
+                                                  plate + kReleaseHeight_m * up};
+  for (const Eigen::Vector3d& target : waypoints) {
+    if (!arm_->SolveGraspIk(target, 0.0, Ur5Arm::kHome)) {
+      char where[96];
+      std::snprintf(where, sizeof(where), "(%.3f, %.3f, %.3f)", target.x(), target.y(), target.z());
+      throw UserError(std::string("tabletop: the arm cannot reach ") + where +
+                      " in this layout (plate at the table edge too far from the robot?)");
+    }
+  }
 }
 
 void Tabletop::Render() {
@@ -140,7 +160,12 @@ std::vector<float> Tabletop::ImageAsY() const {
 
 Observation Tabletop::Observe() const {
   Observation o;
-  for (double q : arm_->JointPositions()) o.x.push_back(static_cast<float>(q));
+  // Joint angles relative to the home pose: the task moves each joint by well under a radian
+  // around offsets of up to pi, and the policy's tanh layer resolves small numbers better.
+  const Ur5Joints q = arm_->JointPositions();
+  for (int i = 0; i < Ur5Arm::kJoints; ++i) {
+    o.x.push_back(static_cast<float>(q[i] - Ur5Arm::kHome[i]));
+  }
   o.x.push_back(static_cast<float>(arm_->GripperOpening()));
   o.y = ImageAsY();
   return o;
@@ -180,7 +205,11 @@ std::vector<float> Tabletop::ExpertAction() const {
     }
   } else if (delivered) {
     target = plate + Eigen::Vector3d(0, 0, kRetreatHeight_m);
-  } else if (PlanarDistance(grip, toast) > kAlignTolerance_m) {
+  } else if (PlanarDistance(grip, toast) > kAlignTolerance_m &&
+             !(PlanarDistance(grip, toast) < kDescentTolerance_m &&
+               grip.z() < toast.z() + kApproachHeight_m - 0.02)) {
+    // Above the toast first; once descending, a joint-space move may drift a little sideways,
+    // which must not send the arm back up (hysteresis).
     target = toast + Eigen::Vector3d(0, 0, kApproachHeight_m);
   } else {
     target = toast;
@@ -188,11 +217,10 @@ std::vector<float> Tabletop::ExpertAction() const {
   }
   const Ur5Joints q = arm_->JointPositions();
   const auto goal = arm_->SolveGraspIk(target, 0.0, q);
-  if (!goal) {
-    throw UserError("tabletop: the expert cannot reach (" + std::to_string(target.x()) + ", " +
-                    std::to_string(target.y()) + ", " + std::to_string(target.z()) + ")");
-  }
   std::vector<float> u(Ur5Arm::kJoints + 1);
+  // Reset checked that the layout is reachable; a target out of reach here comes from a state a
+  // policy drove the arm into (e.g. toast flung up), where the teacher would hold still.
+  if (!goal) return u;
   for (int i = 0; i < Ur5Arm::kJoints; ++i) {
     const double v = std::clamp(kExpertGain_per_s * ((*goal)[i] - q[i]), -kExpertMaxSpeed_rad_s,
                                 kExpertMaxSpeed_rad_s);
@@ -234,6 +262,11 @@ bool Tabletop::TaskSucceeded() const {
   const Eigen::Vector3d toast = ToastPosition();
   return arm_->HeldObject() != toast_body_ &&
          PlanarDistance(toast, PlatePosition()) < kPlateRadius_m && toast.z() < 0.05;
+}
+
+bool Tabletop::DemonstrationDone() const {
+  const Eigen::Vector3d retreat = PlatePosition() + Eigen::Vector3d(0, 0, kRetreatHeight_m);
+  return TaskSucceeded() && (arm_->GripPosition() - retreat).norm() < kRetreatTolerance_m;
 }
 
 double Tabletop::ToastToBowlDistance() const { return PlanarDistance(ToastPosition(), BowlPosition()); }

@@ -63,6 +63,8 @@ class Tabletop : public World {
   bool HigherIsBetter() const override { return false; }
   std::string MetricName() const override;
   bool HasSuccess() const override { return true; }
+  /// The toast is on the plate and the arm has risen back above it: a teacher stops there.
+  bool DemonstrationDone() const override;
   double StepSeconds() const override { return kControlPeriod_s; }
   /// The toast lies on the plate, released.
   bool TaskSucceeded() const override;
@@ -86,6 +88,8 @@ class Tabletop : public World {
   void PlaceMocap(int body, const Eigen::Vector3d& position);
   Eigen::Vector3d DrawBowlPosition(Rng& rng) const;
   void Render();
+  /// UserError if the expert's waypoints of this layout are out of the arm's reach.
+  void CheckReachable() const;
   std::vector<float> ImageAsY() const;
 
   TabletopOptions options_;

@@ -18,7 +18,9 @@ constexpr const char* kJointNames[Ur5Arm::kJoints] = {"ur5_shoulder_pan", "ur5_s
                                                       "ur5_wrist_2",      "ur5_wrist_3"};
 constexpr const char* kFingerNames[2] = {"ur5_finger_left", "ur5_finger_right"};
 constexpr char kGraspPrefix[] = "grasp_";
-constexpr double kFingerOpen_m = 0.04;
+// A 12 cm stroke (like a Robotiq 2F-140): the toast (9 cm) fits, and a held object shows in the
+// finger opening, which the policy reads as part of x.
+constexpr double kFingerOpen_m = 0.06;
 // Fingers sit 12 mm either side of the grip point and are 8 mm thick (half): a finger at slide
 // position s touches an object of half-width w when 0.012 + s - 0.008 = w.
 constexpr double kFingerInnerOffset_m = 0.004;
@@ -37,16 +39,15 @@ int RequireId(const mjModel* m, mjtObj type, const std::string& name, const char
   return id;
 }
 
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-
 double Clamp(double v, double lo, double hi) { return std::min(hi, std::max(lo, v)); }
 
 }  // namespace
 
+void Ur5Arm::ScratchDeleter::operator()(mjData_* d) const { mj_deleteData(d); }
+
 Ur5Arm::Ur5Arm(MujocoModel& scene) : scene_(&scene) {
   const mjModel* m = scene.model();
+  ik_data_.reset(mj_makeData(m));
   for (int i = 0; i < kJoints; ++i) {
     const int joint = RequireId(m, mjOBJ_JOINT, kJointNames[i], "joint");
     qpos_adr_[i] = m->jnt_qposadr[joint];
@@ -210,7 +211,7 @@ void Ur5Arm::Step(double duration_s) {
 std::optional<Ur5Joints> Ur5Arm::SolveGraspIk(const Eigen::Vector3d& target, double yaw_rad,
                                               const Ur5Joints& seed) const {
   const mjModel* m = scene_->model();
-  std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m));
+  mjData* d = ik_data_.get();
   mju_copy(d->qpos, scene_->data()->qpos, m->nq);
   // Desired grip frame: x along the closing axis at yaw, z straight down.
   const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
@@ -228,8 +229,8 @@ std::optional<Ur5Joints> Ur5Arm::SolveGraspIk(const Eigen::Vector3d& target, dou
     Ur5Joints q = start;
     for (int iteration = 0; iteration < 300; ++iteration) {
       for (int i = 0; i < kJoints; ++i) d->qpos[qpos_adr_[i]] = q[i];
-      mj_kinematics(m, d.get());
-      mj_comPos(m, d.get());
+      mj_kinematics(m, d);
+      mj_comPos(m, d);
       const mjtNum* p = d->site_xpos + 3 * grip_site_;
       Eigen::Matrix<double, 6, 1> error;
       error.head<3>() = target - Eigen::Vector3d(p[0], p[1], p[2]);
@@ -241,7 +242,7 @@ std::optional<Ur5Joints> Ur5Arm::SolveGraspIk(const Eigen::Vector3d& target, dou
       if (error.head<3>().norm() < kTolerance_m && error.tail<3>().norm() < 0.01 * kOrientationWeight) {
         return q;
       }
-      mj_jacSite(m, d.get(), jacp.data(), jacr.data(), grip_site_);
+      mj_jacSite(m, d, jacp.data(), jacr.data(), grip_site_);
       Eigen::Matrix<double, 6, kJoints> jacobian;
       for (int i = 0; i < kJoints; ++i) {
         for (int k = 0; k < 3; ++k) {

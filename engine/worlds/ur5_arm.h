@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,7 +74,13 @@ class Ur5Arm {
   void UpdateGrasp();
   int FindGraspable() const;
 
+  struct ScratchDeleter {
+    void operator()(mjData_* d) const;
+  };
+
   MujocoModel* scene_;
+  // IK works on its own copy of the state; making an mjData costs far more than an IK solve.
+  std::unique_ptr<mjData_, ScratchDeleter> ik_data_;
   std::array<int, kJoints> qpos_adr_{}, dof_adr_{}, actuator_{};
   std::array<int, 2> finger_qpos_adr_{}, finger_actuator_{};
   int grip_site_ = -1, gripper_body_ = -1;

@@ -31,6 +31,8 @@ Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
       sample.u = world.ExpertAction();
       world.Step(sample.u);
       episode.samples.push_back(std::move(sample));
+      // A teacher stops recording once the task is done (see World::DemonstrationDone).
+      if (world.DemonstrationDone()) break;
     }
     dataset.demos.push_back(std::move(episode));
   }

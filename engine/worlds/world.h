@@ -56,6 +56,10 @@ class World {
   virtual std::string MetricName() const = 0;
   /// The metric's short name for tables and JSON, e.g. "distance", "reward", "action_mse".
   virtual std::string MetricKey() const { return HigherIsBetter() ? "reward" : "distance"; }
+  /// True when the demonstrator has finished in the current state, so recording stops before
+  /// EpisodeLength() (a teacher stops the recording once the task is done, rather than recording
+  /// the arm standing still). Rollouts always run EpisodeLength() steps. Default: never.
+  virtual bool DemonstrationDone() const { return false; }
   /// Seconds of teaching one step stands for (the control period of a robot world, whose
   /// demonstrations cost the teacher real time); 0 for the abstract 2-D worlds.
   virtual double StepSeconds() const { return 0.0; }
@@ -70,8 +74,8 @@ class World {
   virtual bool ScoresActions() const { return false; }
 };
 
-/// Records one demonstration per seed: Reset(seed), then EpisodeLength() steps of (x, y, b, u)
-/// with the expert acting; also `play_per_scenario` play samples per scenario (drawn from the
+/// Records one demonstration per seed: Reset(seed), then up to EpisodeLength() steps of
+/// (x, y, b, u) with the expert acting (fewer when DemonstrationDone() says the teacher stopped); also `play_per_scenario` play samples per scenario (drawn from the
 /// initial scenario before the demonstration runs). Used by experiments and by `recon record`.
 Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
                              int play_per_scenario);

@@ -96,6 +96,25 @@ TEST(TabletopTest, ExpertPutsTheToastOnThePlate) {
   EXPECT_EQ(succeeded, 10);
 }
 
+TEST(TabletopTest, RecordingStopsWhenTheTeacherIsDone) {
+  auto world = MakeTabletop();
+  const Dataset data = RecordDemonstrations(*world, {100, 101, 102}, 2);  // seeds 100-102
+  ASSERT_EQ(data.demos.size(), 3u);
+  EXPECT_EQ(data.play.size(), 6u);
+  for (const Episode& e : data.demos) {
+    EXPECT_GT(e.samples.size(), 40u);
+    EXPECT_LT(e.samples.size(), static_cast<size_t>(Tabletop::kEpisodeLength));
+    // The gripper command closes once and opens once: grasp, then release over the plate.
+    int changes = 0;
+    for (size_t t = 1; t < e.samples.size(); ++t) {
+      changes += e.samples[t].u[6] != e.samples[t - 1].u[6] ? 1 : 0;
+    }
+    EXPECT_EQ(changes, 2);
+  }
+  EXPECT_TRUE(world->TaskSucceeded());
+  EXPECT_TRUE(world->DemonstrationDone());
+}
+
 TEST(TabletopTest, SameSeedReproducesImagesAndExpertBitForBit) {
   auto a = MakeTabletop();
   auto b = MakeTabletop();

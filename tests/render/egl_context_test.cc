@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <mujoco/mujoco.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <thread>
@@ -105,6 +107,23 @@ TEST(EglContextTest, DestroyingOneContextDoesNotBreakAnotherOnTheSameDisplay) {
   }
   EXPECT_EQ(survivor.Render(scene, "top", 64, 64).rgb, before.rgb);
   EXPECT_GT(testing::FindBlob(before, testing::IsRed).count, 30);
+}
+
+TEST(EglContextDeathTest, WithoutAMesaDriverTheErrorNamesEachFailedCallAndItsCode) {
+  // The check runs in a fresh child process ("threadsafe" style re-executes this binary), so that
+  // Mesa is not loaded yet when it is pointed at a directory without drivers.
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  EXPECT_EXIT(
+      {
+        setenv("LIBGL_DRIVERS_PATH", "/nonexistent", 1);
+        std::string why;
+        const bool available = HeadlessRenderingAvailable(&why);
+        std::fprintf(stderr, "why: %s\n", why.c_str());
+        std::exit(available ? 1 : 0);
+      },
+      ::testing::ExitedWithCode(0),
+      "why: cannot create a headless OpenGL context: eglInitialize\\(surfaceless display\\) "
+      "failed: EGL_NOT_INITIALIZED \\(0x3001\\)");
 }
 
 }  // namespace

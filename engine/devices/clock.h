@@ -1,0 +1,24 @@
+#pragma once
+
+namespace recon::devices {
+
+/// Where device timestamps come from. The simulated cell uses a clock that advances with the
+/// simulation; real devices use the steady wall clock. Seconds since an arbitrary start.
+class Clock {
+ public:
+  virtual ~Clock() = default;
+  virtual double NowSeconds() const = 0;
+};
+
+/// A clock that only moves when told to: simulated time.
+class ManualClock final : public Clock {
+ public:
+  double NowSeconds() const override { return now_s_; }
+  void Advance(double seconds) { now_s_ += seconds; }
+  void Set(double seconds) { now_s_ = seconds; }
+
+ private:
+  double now_s_ = 0.0;
+};
+
+}  // namespace recon::devices
