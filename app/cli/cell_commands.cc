@@ -1,5 +1,7 @@
 #include "app/cli/cell_commands.h"
 
+#include <mujoco/mujoco.h>
+
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -11,6 +13,7 @@
 #include "engine/core/progress.h"
 #include "engine/core/strings.h"
 #include "engine/report/image_png.h"
+#include "engine/worlds/bintransfer.h"
 #include "engine/worlds/scene_assets.h"
 #include "engine/worlds/tabletop.h"
 #include "engine/worlds/tag_textures.h"
@@ -40,9 +43,15 @@ void RunRender(const RenderFlags& flags) {
     world.Reset(flags.seed);
     image = renderer.Render(world.scene(), flags.camera.empty() ? "top" : flags.camera,
                             flags.width, flags.height);
+  } else if (flags.scene == "bintransfer") {
+    worlds::BinTransfer world("none", 0.0);
+    world.Reset(flags.seed);
+    image = renderer.Render(world.scene(), flags.camera.empty() ? "overhead" : flags.camera,
+                            flags.width, flags.height);
   } else {
     worlds::MujocoModel scene = worlds::LoadScene(flags.scene);
     worlds::PaintTagTextures(scene);
+    mj_forward(scene.model(), scene.data());  // cameras and bodies where the model puts them
     image = renderer.Render(scene, flags.camera.empty() ? "top" : flags.camera, flags.width,
                             flags.height);
   }
@@ -97,8 +106,9 @@ void AddCellCommands(CLI::App& app) {
   render->add_option("--scene", render_flags->scene,
                      "a scene (" + JoinNames(worlds::SceneNames()) + ") or an MJCF file ending in .xml")
       ->capture_default_str();
-  render->add_option("--camera", render_flags->camera, "camera name (default: top)");
-  render->add_option("--seed", render_flags->seed, "scenario seed (tabletop layout)")
+  render->add_option("--camera", render_flags->camera,
+                     "camera name (default: top; overhead for bintransfer)");
+  render->add_option("--seed", render_flags->seed, "scenario seed (tabletop, bintransfer layout)")
       ->capture_default_str();
   render->add_option("--width", render_flags->width, "image width")->capture_default_str();
   render->add_option("--height", render_flags->height, "image height")->capture_default_str();

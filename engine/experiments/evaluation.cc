@@ -52,6 +52,7 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
     outcomes[i].metric =
         score_actions ? action_error[i] / steps : scenario_worlds[i]->EpisodeMetric();
     outcomes[i].succeeded = scenario_worlds[i]->TaskSucceeded();
+    if (!score_actions) outcomes[i].details = scenario_worlds[i]->OutcomeDetails();
   }
   return outcomes;
 }
@@ -81,6 +82,15 @@ double SuccessRate(const std::vector<ScenarioOutcome>& outcomes) {
   int succeeded = 0;
   for (const ScenarioOutcome& o : outcomes) succeeded += o.succeeded ? 1 : 0;
   return static_cast<double>(succeeded) / static_cast<double>(outcomes.size());
+}
+
+std::map<std::string, double> MeanDetails(const std::vector<ScenarioOutcome>& outcomes) {
+  std::map<std::string, double> sums;
+  for (const ScenarioOutcome& o : outcomes) {
+    for (const auto& [key, value] : o.details) sums[key] += value;
+  }
+  for (auto& [key, sum] : sums) sum /= static_cast<double>(outcomes.size());
+  return sums;
 }
 
 }  // namespace recon::experiments

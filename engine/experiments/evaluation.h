@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -16,6 +18,7 @@ using WorldMaker = std::function<std::unique_ptr<worlds::World>()>;
 struct ScenarioOutcome {
   double metric = 0;
   bool succeeded = false;  ///< only meaningful for worlds with HasSuccess()
+  std::map<std::string, double> details;  ///< World::OutcomeDetails() at the end
 };
 
 /// Scores `policy` on each test scenario, one world per scenario stepped in lockstep so the
@@ -36,5 +39,7 @@ std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,
 /// The metrics of some outcomes, and the fraction that succeeded.
 std::vector<double> Metrics(const std::vector<ScenarioOutcome>& outcomes);
 double SuccessRate(const std::vector<ScenarioOutcome>& outcomes);
+/// The mean of each detail over the outcomes.
+std::map<std::string, double> MeanDetails(const std::vector<ScenarioOutcome>& outcomes);
 
 }  // namespace recon::experiments

@@ -100,6 +100,7 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
       config.play_per_scenario >= 0 ? config.play_per_scenario : world->PlaySamplesPerScenario();
   const int play = condition.use_play ? play_recipe : 0;
   const Dataset data = worlds::RecordDemonstrations(*world, scenario_seeds, play);
+  result.demo_samples = data.NumDemoSamples();
 
   learn::TrainConfig train = config.train;
   train.method = condition.method;
@@ -153,6 +154,7 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   const std::vector<ScenarioOutcome> outcomes = EvaluatePolicy(make_test_world, policy, test_seeds);
   result.metric = Mean(Metrics(outcomes));
   result.success_rate = SuccessRate(outcomes);
+  result.details = MeanDetails(outcomes);
   return result;
 }
 

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,8 @@ struct RunResult {
   uint64_t train_seed = 0;  ///< seeds initialisation, batches and sampling noise
   double metric = 0;        ///< mean episode metric over the test scenarios
   double success_rate = 0;  ///< fraction of test scenarios solved (worlds with HasSuccess())
+  std::map<std::string, double> details;  ///< World::OutcomeDetails() means over test scenarios
+  int64_t demo_samples = 0;  ///< samples in the run's demonstrations (they may stop early)
   int attempts = 1;
   int train_steps = 0;
   double train_seconds = 0;

@@ -47,6 +47,7 @@ json SummaryBlock(const ConditionSummary& s, const ExperimentResult& result) {
           {"mean_train_seconds", s.mean_train_seconds}};
   // The metric also under its own short name ("distance", "action_mse"), as a reader expects.
   if (!result.metric_key.empty()) block[result.metric_key] = s.mean;
+  if (!s.details.empty()) block["details"] = s.details;
   if (result.has_success) {
     block["success_rate"] = s.success_rate;
     block["success_sem"] = s.success_sem;
@@ -62,7 +63,14 @@ constexpr double kBeaconPlacementSeconds = 2.3;
 constexpr int kPlacementsPerBeacon = 2;  // attach before teaching, remove after
 
 json TeachingTime(const ExperimentConfig& config, const ExperimentResult& result) {
-  const double demo_seconds = result.episode_length * result.step_seconds;
+  // A demonstration lasts as long as the recordings did (they stop when the teacher is done).
+  double samples = 0, demos = 0;
+  for (const RunResult& r : result.runs) {
+    samples += static_cast<double>(r.demo_samples);
+    demos += r.demos;
+  }
+  const double demo_seconds =
+      (demos > 0 ? samples / demos : result.episode_length) * result.step_seconds;
   const double play_seconds_per_demo = result.play_per_scenario * result.step_seconds;
   json totals = json::object();
   for (int demos : config.demos) {
@@ -87,7 +95,8 @@ json TeachingTime(const ExperimentConfig& config, const ExperimentResult& result
             {"four_demos_baseline_s", 66.4},
             {"four_demos_recon_play_s", 75.0}}},
           {"note",
-           "demonstration and play seconds are the simulated teleop's (steps x control period); "
+           "demonstration and play seconds are the simulated teleop's (recorded samples x control "
+           "period, averaged over every run's demonstrations); "
            "beacon placement uses the paper's measured 2.3 s"}};
 }
 
@@ -178,6 +187,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
         if (std::isfinite(r.metric)) {
           metrics.push_back(r.metric);
           success.push_back(r.success_rate);
+          for (const auto& [key, value] : r.details) s.details[key] += value;
         } else {
           ++s.diverged;
         }
@@ -185,6 +195,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       s.mean = Mean(metrics);
       s.sem = StandardError(metrics);
       s.n = static_cast<int>(metrics.size());
+      for (auto& [key, value] : s.details) value /= static_cast<double>(metrics.size());
       s.success_rate = Mean(success);
       s.success_sem = StandardError(success);
       s.mean_attempts = runs > 0 ? attempts / runs : 0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct ConditionSummary {
   /// standard error.
   double success_rate = 0;
   double success_sem = 0;
+  std::map<std::string, double> details;  ///< mean over runs of RunResult::details
 };
 
 /// One summary per (demos, condition), in config order.

@@ -34,11 +34,12 @@ struct TabletopOptions {
 ///
 /// x = 6 joint angles and the gripper opening (7); y = the camera image, channels first, values
 /// 0-255 (3 x H x W); b = the plate beacon's table position (2); u = 6 joint velocities (rad/s)
-/// and a gripper command (close when > 0.5) (7). Steps are 0.1 s (the paper's 10 Hz); an episode
-/// is 150 steps (the paper's demonstrations had about 150 samples).
+/// and a gripper command (close when > 0.5) (7). Steps are 0.1 s (the paper's 10 Hz). A recorded
+/// demonstration stops when the toast is on the plate (about 140 steps; the paper's had about
+/// 150 samples); a rollout runs 200 steps.
 class Tabletop : public World {
  public:
-  static constexpr int kEpisodeLength = 150;
+  static constexpr int kEpisodeLength = 200;
   static constexpr double kControlPeriod_s = 0.1;
   /// The paper recorded 4 s of play data at 10 Hz (40 (y, b) pairs) for 4 demonstrations: 10 per
   /// demonstration scenario.
@@ -68,6 +69,10 @@ class Tabletop : public World {
   double StepSeconds() const override { return kControlPeriod_s; }
   /// The toast lies on the plate, released.
   bool TaskSucceeded() const override;
+  /// "toast_moved" (the toast left its pick-up place by more than 3 cm), "toast_held" (still in
+  /// the gripper at the end), "grip_nearer_bowl" (the gripper ended nearer the bowl than the
+  /// plate: the paper's Baseline failure), "toast_to_bowl_m".
+  std::map<std::string, double> OutcomeDetails() const override;
 
   static const std::vector<std::string>& Placements();
 

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -68,6 +69,10 @@ class World {
   virtual bool HasSuccess() const { return false; }
   /// Whether the task is done in the current state (false when !HasSuccess()).
   virtual bool TaskSucceeded() const { return false; }
+  /// Named facts about the end state that explain an outcome, each a number averaged over test
+  /// scenarios in the experiment summary (e.g. tabletop's "toast_moved": 1 if the toast left its
+  /// pick-up place). Empty by default.
+  virtual std::map<std::string, double> OutcomeDetails() const { return {}; }
   /// True when a policy is scored by its action error along the expert's own demonstration of
   /// each test scenario (the paper's BinTransfer metric: action MSE against the expert) instead
   /// of by the outcome of its own rollout.

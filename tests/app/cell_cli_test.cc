@@ -2,7 +2,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
@@ -11,27 +10,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/app/run_recon.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct CommandResult {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
-
-CommandResult RunRecon(const std::string& args) {
-  const std::string command = std::string(RECON_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using recon::testing::CommandResult;
+using recon::testing::RunRecon;
 
 fs::path FreshDir(const std::string& name) {
   const fs::path dir = fs::path(testing::TempDir()) / ("cell_cli_" + name);
@@ -136,16 +123,20 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
       for (const char* key : {"success_rate", "distance", "sem", "n"}) {
         EXPECT_TRUE(block.contains(key)) << key;
       }
+      EXPECT_TRUE(block["details"].contains("grip_nearer_bowl")) << block.dump();
       EXPECT_GE(block["success_rate"].get<double>(), 0.0);
       EXPECT_LE(block["success_rate"].get<double>(), 1.0);
     }
   }
   const auto& time = summary["teaching_time"];
-  EXPECT_DOUBLE_EQ(time["seconds_per_demonstration"].get<double>(), 15.0);
+  // The scripted teacher takes about 13.5 s (the paper's people took 16.6 s).
+  const double per_demo = time["seconds_per_demonstration"].get<double>();
+  EXPECT_GT(per_demo, 10.0);
+  EXPECT_LT(per_demo, 20.0);
   const auto& two = time["by_demos"]["2"];
   // RECON (Play) costs the demonstrations plus two beacon placements plus the play data.
-  EXPECT_DOUBLE_EQ(two["baseline"]["total_s"].get<double>(), 30.0);
-  EXPECT_DOUBLE_EQ(two["recon-play"]["total_s"].get<double>(), 30.0 + 4.6 + 2.0);
+  EXPECT_NEAR(two["baseline"]["total_s"].get<double>(), 2 * per_demo, 1e-9);
+  EXPECT_NEAR(two["recon-play"]["total_s"].get<double>(), 2 * per_demo + 4.6 + 2.0, 1e-9);
   EXPECT_TRUE(fs::exists(out / "success.png"));
   EXPECT_TRUE(fs::exists(out / "data_efficiency.png"));
 }

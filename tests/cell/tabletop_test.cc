@@ -92,6 +92,10 @@ TEST(TabletopTest, ExpertPutsTheToastOnThePlate) {
     for (int t = 0; t < world->EpisodeLength(); ++t) world->Step(world->ExpertAction());
     succeeded += world->TaskSucceeded() ? 1 : 0;
     EXPECT_LT(world->EpisodeMetric(), Tabletop::kPlateRadius_m) << "seed " << seed;
+    const auto details = world->OutcomeDetails();
+    EXPECT_EQ(details.at("toast_moved"), 1.0);
+    EXPECT_EQ(details.at("toast_held"), 0.0);
+    EXPECT_EQ(details.at("grip_nearer_bowl"), 0.0) << "the expert ends above the plate";
   }
   EXPECT_EQ(succeeded, 10);
 }
