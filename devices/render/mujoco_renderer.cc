@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <cstring>
+#include <list>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <vector>
@@ -64,59 +66,90 @@ struct ModelKey {
 
 }  // namespace
 
+// MuJoCo's scene and GPU copy of one model.
+struct ModelResources {
+  ModelKey key;
+  mjvScene scene;
+  mjrContext context;
+
+  ModelResources() {
+    mjv_defaultScene(&scene);
+    mjr_defaultContext(&context);
+  }
+  void Free() {
+    std::lock_guard lock(make_context_mutex);
+    mjr_freeContext(&context);
+    mjv_freeScene(&scene);
+  }
+};
+
+// Worlds rendered from one thread share a renderer (MujocoRendererFactory), and an experiment
+// evaluates up to a few dozen worlds in lockstep, each with its own model: keep that many GPU
+// copies rather than remaking one per frame.
+constexpr size_t kMaxCachedModels = 48;
+
 struct MujocoRenderer::State {
   EglContext egl;  // first member: made first, destroyed last
-  mjvScene scene;
   mjvOption option;
   mjvCamera camera;
   mjvPerturb perturb;
-  mjrContext context;
-  ModelKey made_for;  // the model `scene` and `context` were made for; none yet when null
+  std::list<ModelResources> models;  // most recently used first
   std::vector<unsigned char> bottom_up;  // mjr_readPixels' rows, reused between frames
 
   State() {
-    mjv_defaultScene(&scene);
     mjv_defaultOption(&option);
     mjv_defaultCamera(&camera);
     mjv_defaultPerturb(&perturb);
-    mjr_defaultContext(&context);
   }
 
-  void Free() {
-    mjr_freeContext(&context);
-    mjv_freeScene(&scene);
-    made_for = {};
+  void FreeAll() {
+    for (ModelResources& r : models) r.Free();
+    models.clear();
   }
 
-  /// Makes MuJoCo's scene and GPU context for `m` unless they are already made for it.
-  void Prepare(const mjModel* m) {
+  /// MuJoCo's scene and GPU context for `m`, made unless cached.
+  ModelResources& Prepare(const mjModel* m) {
     const ModelKey key = ModelKey::Of(m);
-    if (made_for == key) return;
-    Free();
+    for (auto it = models.begin(); it != models.end(); ++it) {
+      if (it->key == key) {
+        models.splice(models.begin(), models, it);
+        return models.front();
+      }
+    }
+    if (models.size() >= kMaxCachedModels) {
+      models.back().Free();
+      models.pop_back();
+    }
     // A failed earlier attempt (see the catch below) leaves OpenGL errors that mjr_makeContext
     // would blame on itself in a warning.
     ClearGlErrors();
+    models.emplace_front();
+    ModelResources& r = models.front();
     try {
-      mjv_makeScene(m, &scene, kMaxSceneGeoms);
-      {
-        std::lock_guard lock(make_context_mutex);
-        // The font is never drawn into camera images: the smallest one is the cheapest to make.
-        mjr_makeContext(m, &context, mjFONTSCALE_50);
-      }
+      mjv_makeScene(m, &r.scene, kMaxSceneGeoms);
+      std::lock_guard lock(make_context_mutex);
+      // The font is never drawn into camera images: the smallest one is the cheapest to make.
+      mjr_makeContext(m, &r.context, mjFONTSCALE_50);
     } catch (...) {
-      Free();
+      r.Free();
+      models.pop_front();
       ClearGlErrors();
       throw;
     }
     // mjv_makeScene resets the flags; these two are most of llvmpipe's time per small frame.
-    scene.flags[mjRND_SHADOW] = 0;
-    scene.flags[mjRND_REFLECTION] = 0;
-    made_for = key;
+    r.scene.flags[mjRND_SHADOW] = 0;
+    r.scene.flags[mjRND_REFLECTION] = 0;
+    r.key = key;
+    return r;
   }
 };
 
 MujocoRenderer::MujocoRenderer() {
   worlds::InstallMujocoErrorHandlers();
+  // Contexts are made and destroyed one at a time: Mesa's llvmpipe crashed (a general protection
+  // fault in swrast_dri.so, once in a dozen experiments) while two threads made and dropped
+  // contexts side by side.
+  std::lock_guard lock(make_context_mutex);
   state_ = std::make_unique<State>();
 }
 
@@ -124,12 +157,14 @@ MujocoRenderer::~MujocoRenderer() {
   // mjr_freeContext deletes OpenGL objects, so our context must be current for it.
   try {
     ScopedCurrent current(state_->egl);
-    state_->Free();
+    state_->FreeAll();
   } catch (const std::exception&) {
     // The context is current on another thread: destroying it frees its OpenGL objects anyway;
     // only MuJoCo's CPU-side memory is left to free, and that needs no context.
-    mjv_freeScene(&state_->scene);
+    for (ModelResources& r : state_->models) mjv_freeScene(&r.scene);
   }
+  std::lock_guard lock(make_context_mutex);
+  state_.reset();
 }
 
 const std::string& MujocoRenderer::context_description() const { return state_->egl.description(); }
@@ -153,23 +188,23 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
 
   State& s = *state_;
   ScopedCurrent current(s.egl);
-  s.Prepare(m);
+  ModelResources& r = s.Prepare(m);
   s.camera.type = mjCAMERA_FIXED;
   s.camera.fixedcamid = camera_id;
-  mjv_updateScene(m, scene.data(), &s.option, &s.perturb, &s.camera, mjCAT_ALL, &s.scene);
+  mjv_updateScene(m, scene.data(), &s.option, &s.perturb, &s.camera, mjCAT_ALL, &r.scene);
 
   const mjrRect viewport = {0, 0, width, height};
-  mjr_setBuffer(mjFB_OFFSCREEN, &s.context);
-  if (s.context.currentBuffer != mjFB_OFFSCREEN) {
+  mjr_setBuffer(mjFB_OFFSCREEN, &r.context);
+  if (r.context.currentBuffer != mjFB_OFFSCREEN) {
     throw std::runtime_error("MuJoCo has no offscreen buffer for scene \"" + ModelName(m) + "\"");
   }
-  mjr_render(viewport, &s.scene, &s.context);
+  mjr_render(viewport, &r.scene, &r.context);
   // Rows of 3 * width bytes are not 4-byte aligned for every width, and OpenGL pads read rows to
   // 4 bytes by default; MuJoCo 2.2 happens to set 1 itself, the buffer size below relies on it.
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   const size_t row_bytes = static_cast<size_t>(width) * 3;
   s.bottom_up.resize(row_bytes * height);
-  mjr_readPixels(s.bottom_up.data(), nullptr, viewport, &s.context);
+  mjr_readPixels(s.bottom_up.data(), nullptr, viewport, &r.context);
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
     throw std::runtime_error("OpenGL error " + Hex(error) + " while rendering camera \"" + camera +
                              "\" of MuJoCo scene \"" + ModelName(m) + "\"");
@@ -187,9 +222,35 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
   return image;
 }
 
+namespace {
+
+// A handle on the calling thread's shared renderer: worlds made on one thread (an experiment's
+// worker evaluates 20 at once) share one EGL context instead of making one each.
+class SharedRenderer final : public worlds::SceneRenderer {
+ public:
+  SharedRenderer() {
+    thread_local std::weak_ptr<MujocoRenderer> shared;
+    renderer_ = shared.lock();
+    if (renderer_ == nullptr) {
+      renderer_ = std::make_shared<MujocoRenderer>();
+      shared = renderer_;
+    }
+  }
+  RgbImage Render(worlds::MujocoModel& scene, const std::string& camera, int width,
+                  int height) override {
+    return renderer_->Render(scene, camera, width, height);
+  }
+
+ private:
+  std::shared_ptr<MujocoRenderer> renderer_;
+};
+
+}  // namespace
+
 worlds::SceneRendererFactory MujocoRendererFactory() {
-  return
-      []() -> std::unique_ptr<worlds::SceneRenderer> { return std::make_unique<MujocoRenderer>(); };
+  return []() -> std::unique_ptr<worlds::SceneRenderer> {
+    return std::make_unique<SharedRenderer>();
+  };
 }
 
 bool HeadlessRenderingAvailable(std::string* why) {

@@ -15,8 +15,8 @@ namespace recon::render {
 /// <quality offsamples="0"/> since multisampling costs as much again.
 ///
 /// MuJoCo's GPU-side copy of a model (mjrContext: textures, meshes, offscreen buffers) costs
-/// 90-255 ms to make, so it is made on the first Render of a model and kept until a different
-/// model is rendered. A model changed after its first rendering (e.g. a texture painted through
+/// 12-255 ms to make, so it is made on the first Render of a model and kept (for up to 48 models,
+/// least recently used dropped first). A model changed after its first rendering (e.g. a texture painted through
 /// MujocoModel::mutable_model()) is not re-uploaded: make such changes before rendering.
 class MujocoRenderer final : public worlds::SceneRenderer {
  public:
@@ -38,7 +38,8 @@ class MujocoRenderer final : public worlds::SceneRenderer {
   std::unique_ptr<State> state_;
 };
 
-/// Makes MujocoRenderers; hand it to the worlds that observe images.
+/// Makes renderers for the worlds that observe images. All renderers made on one thread share one
+/// MujocoRenderer (one EGL context), which lives as long as any of them.
 worlds::SceneRendererFactory MujocoRendererFactory();
 
 /// Whether a headless rendering context can be made here (tries to make one and drops it). When
