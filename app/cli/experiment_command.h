@@ -9,7 +9,7 @@ struct GlobalOptions {
   int threads = 1;
 };
 
-/// Adds `recon experiment dynamic2d|static2d` to `app`.
+/// Adds `recon experiment dynamic2d|static2d|bintransfer|tabletop` to `app`.
 void AddExperimentCommands(CLI::App& app, const GlobalOptions& global);
 
 }  // namespace recon::cli
