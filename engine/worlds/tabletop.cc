@@ -128,6 +128,17 @@ void Tabletop::Reset(uint64_t seed) {
   Render();
 }
 
+void Tabletop::ResetToLayout(uint64_t seed, const Eigen::Vector3d& plate,
+                             const Eigen::Vector3d& bowl) {
+  Reset(seed);
+  plate_side_ = plate.y() >= 0 ? 1 : -1;
+  PlaceMocap(plate_body_, plate);
+  PlaceMocap(bowl_body_, bowl);
+  mj_forward(scene_.model(), scene_.data());
+  CheckReachable();
+  Render();
+}
+
 void Tabletop::CheckReachable() const {
   const Eigen::Vector3d toast = ToastPosition(), plate = PlatePosition();
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();

@@ -76,6 +76,11 @@ class Tabletop : public World {
 
   static const std::vector<std::string>& Placements();
 
+  /// Like Reset(seed) but with the plate and the bowl where given (table frame, metres), for
+  /// tests and tools; the seed still drives beacon noise and play data. UserError if the layout
+  /// puts the expert's waypoints out of the arm's reach.
+  void ResetToLayout(uint64_t seed, const Eigen::Vector3d& plate, const Eigen::Vector3d& bowl);
+
   /// The last camera image (rendered after every Reset and Step).
   const RgbImage& CameraImage() const { return image_; }
   Eigen::Vector3d ToastPosition() const;

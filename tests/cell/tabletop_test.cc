@@ -171,6 +171,20 @@ TEST(TabletopTest, PlayMovesTheBowlWhileTheBeaconReportsThePlate) {
   EXPECT_EQ(world->Observe().y, image);
 }
 
+TEST(TabletopTest, UnreachableLayoutIsAClearErrorAndAReachableOneIsKept) {
+  auto world = MakeTabletop();
+  world->ResetToLayout(4, {0.6, -0.33, 0.0}, {0.4, 0.3, 0.0});
+  EXPECT_EQ(world->PlateSide(), -1);
+  EXPECT_NEAR(world->PlatePosition().x(), 0.6, 1e-12);
+  try {
+    world->ResetToLayout(4, {1.3, 0.33, 0.0}, {0.4, -0.3, 0.0});  // beyond the arm's reach
+    FAIL() << "expected UserError";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("cannot reach"));
+    EXPECT_THAT(e.what(), HasSubstr("1.300"));
+  }
+}
+
 TEST(TabletopTest, BadOptionsAreUserErrors) {
   TabletopOptions options;
   options.placement = "bowl";
