@@ -41,8 +41,8 @@ void RunRender(const RenderFlags& flags) {
     options.placement = "none";
     worlds::Tabletop world(options, std::make_unique<render::MujocoRenderer>());
     world.Reset(flags.seed);
-    image = renderer.Render(world.scene(), flags.camera.empty() ? "top" : flags.camera,
-                            flags.width, flags.height);
+    image = renderer.Render(world.scene(), flags.camera.empty() ? "top" : flags.camera, flags.width,
+                            flags.height);
   } else if (flags.scene == "bintransfer") {
     worlds::BinTransfer world("none", 0.0);
     world.Reset(flags.seed);
@@ -88,8 +88,8 @@ void RunCalibrate(const CalibrateFlags& flags) {
               flags.points, static_cast<unsigned long long>(flags.seed));
   std::fflush(stdout);  // the progress line goes to stderr; keep the two in order
   ProgressLine progress("calibrating", flags.points);
-  const cell::SimCalibrationResult result = cell::RunSimulatedCalibration(
-      options, [&](int, int) { progress.Advance(); });
+  const cell::SimCalibrationResult result =
+      cell::RunSimulatedCalibration(options, [&](int, int) { progress.Advance(); });
   progress.Finish();
   std::printf("%s", cell::Describe(result).c_str());
   if (!flags.out.empty()) {
@@ -103,8 +103,10 @@ void RunCalibrate(const CalibrateFlags& flags) {
 void AddCellCommands(CLI::App& app) {
   auto render_flags = std::make_shared<RenderFlags>();
   CLI::App* render = app.add_subcommand("render", "write one camera image of a simulated scene");
-  render->add_option("--scene", render_flags->scene,
-                     "a scene (" + JoinNames(worlds::SceneNames()) + ") or an MJCF file ending in .xml")
+  render
+      ->add_option(
+          "--scene", render_flags->scene,
+          "a scene (" + JoinNames(worlds::SceneNames()) + ") or an MJCF file ending in .xml")
       ->capture_default_str();
   render->add_option("--camera", render_flags->camera,
                      "camera name (default: top; overhead for bintransfer)");

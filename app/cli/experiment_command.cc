@@ -130,8 +130,8 @@ void PrintTable(const std::vector<experiments::ConditionSummary>& summaries,
   for (const auto& s : summaries) {
     char rate[32] = "";
     if (success) std::snprintf(rate, sizeof(rate), "  %6.0f%%", 100.0 * s.success_rate);
-    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s%s\n", s.condition.c_str(), s.demos, s.mean,
-                s.sem, s.n, s.train_steps, rate,
+    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s%s\n", s.condition.c_str(), s.demos, s.mean, s.sem,
+                s.n, s.train_steps, rate,
                 s.diverged > 0 ? ("  (" + std::to_string(s.diverged) + " diverged)").c_str() : "");
   }
   std::printf("%-16s %6s %9.3f\n", "expert", "", result.expert_metric);

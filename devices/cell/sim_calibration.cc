@@ -95,13 +95,14 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
       char where[96];
       std::snprintf(where, sizeof(where), "(%.3f, %.3f)", truth.x(), truth.y());
       throw UserError(std::string("calibration point ") + std::to_string(i + 1) +
-                      ": the camera does not see the beacon's tag " +
-                      std::to_string(kBeaconTagId) + " at " + where);
+                      ": the camera does not see the beacon's tag " + std::to_string(kBeaconTagId) +
+                      " at " + where);
     }
     const tags::TagLocation located = locator.Locate(*found);
 
     std::vector<uwb::UwbReading> readings;
-    for (int u = 0; u < options.updates_per_point; ++u) parser.Feed(beacon.NextUpdate(truth), readings);
+    for (int u = 0; u < options.updates_per_point; ++u)
+      parser.Feed(beacon.NextUpdate(truth), readings);
     Eigen::Vector3d uwb_sum = Eigen::Vector3d::Zero();
     int uwb_count = 0;
     for (const auto& r : readings) {
@@ -138,7 +139,8 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   for (double x = kMinX; x <= kMaxX + 1e-9; x += 0.05) {
     for (double y = -kMaxAbsY; y <= kMaxAbsY + 1e-9; y += 0.05) {
       const Eigen::Vector3d p(x, y, beacon_height);
-      const Eigen::Vector3d back = result.report.transform.Apply(result.hidden_table_to_uwb.Apply(p));
+      const Eigen::Vector3d back =
+          result.report.transform.Apply(result.hidden_table_to_uwb.Apply(p));
       const double e = (back - p).head<2>().norm();
       sum += e;
       worst = std::max(worst, e);

@@ -21,9 +21,9 @@ struct SimCalibrationOptions {
 
 /// One collected pose, with what each side saw.
 struct SimCalibrationSample {
-  Eigen::Vector3d true_table_m;  ///< where the beacon really is (the simulator's truth)
-  calib::CalibrationPoint point; ///< the camera's tag position and the averaged UWB position
-  int uwb_readings = 0;          ///< lines that parsed into a position during this pose
+  Eigen::Vector3d true_table_m;   ///< where the beacon really is (the simulator's truth)
+  calib::CalibrationPoint point;  ///< the camera's tag position and the averaged UWB position
+  int uwb_readings = 0;           ///< lines that parsed into a position during this pose
 };
 
 /// The outcome: the fit, plus how well it recovered the simulator's hidden UWB frame.

@@ -93,7 +93,7 @@ struct MujocoRenderer::State {
   mjvOption option;
   mjvCamera camera;
   mjvPerturb perturb;
-  std::list<ModelResources> models;  // most recently used first
+  std::list<ModelResources> models;      // most recently used first
   std::vector<unsigned char> bottom_up;  // mjr_readPixels' rows, reused between frames
 
   State() {
@@ -248,9 +248,8 @@ class SharedRenderer final : public worlds::SceneRenderer {
 }  // namespace
 
 worlds::SceneRendererFactory MujocoRendererFactory() {
-  return []() -> std::unique_ptr<worlds::SceneRenderer> {
-    return std::make_unique<SharedRenderer>();
-  };
+  return
+      []() -> std::unique_ptr<worlds::SceneRenderer> { return std::make_unique<SharedRenderer>(); };
 }
 
 bool HeadlessRenderingAvailable(std::string* why) {

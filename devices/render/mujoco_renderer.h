@@ -16,8 +16,9 @@ namespace recon::render {
 ///
 /// MuJoCo's GPU-side copy of a model (mjrContext: textures, meshes, offscreen buffers) costs
 /// 12-255 ms to make, so it is made on the first Render of a model and kept (for up to 48 models,
-/// least recently used dropped first). A model changed after its first rendering (e.g. a texture painted through
-/// MujocoModel::mutable_model()) is not re-uploaded: make such changes before rendering.
+/// least recently used dropped first). A model changed after its first rendering (e.g. a texture
+/// painted through MujocoModel::mutable_model()) is not re-uploaded: make such changes before
+/// rendering.
 class MujocoRenderer final : public worlds::SceneRenderer {
  public:
   /// Makes the EGL context (current on the calling thread). Throws UserError when there is none.

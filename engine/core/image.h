@@ -12,7 +12,9 @@ struct RgbImage {
   int height = 0;
   std::vector<uint8_t> rgb;  ///< width * height * 3 bytes
 
-  const uint8_t* Pixel(int row, int col) const { return rgb.data() + (static_cast<size_t>(row) * width + col) * 3; }
+  const uint8_t* Pixel(int row, int col) const {
+    return rgb.data() + (static_cast<size_t>(row) * width + col) * 3;
+  }
 };
 
 }  // namespace recon

@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <string>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/learn/learner.h"
@@ -17,7 +17,7 @@ using WorldMaker = std::function<std::unique_ptr<worlds::World>()>;
 /// How a policy did on one test scenario.
 struct ScenarioOutcome {
   double metric = 0;
-  bool succeeded = false;  ///< only meaningful for worlds with HasSuccess()
+  bool succeeded = false;                 ///< only meaningful for worlds with HasSuccess()
   std::map<std::string, double> details;  ///< World::OutcomeDetails() at the end
 };
 

@@ -52,7 +52,7 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
   }
   for (const Condition& c : config.conditions) {
     const int d = worlds::MakeWorld(config.world, c.placement, c.noise_sigma, config.authors_compat,
-                                      config.cell)
+                                    config.cell)
                       ->Spec()
                       .b_dim;
     if (c.method == learn::Method::kRecon && config.network.feature_dim <= d) {
@@ -81,9 +81,8 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
                  const std::vector<uint64_t>& test_seeds, LossCurve* curve,
                  const std::atomic<bool>* cancel) {
   const Condition& condition = config.conditions[task.condition];
-  std::unique_ptr<worlds::World> world =
-      worlds::MakeWorld(config.world, condition.placement, condition.noise_sigma,
-                        config.authors_compat, config.cell);
+  std::unique_ptr<worlds::World> world = worlds::MakeWorld(
+      config.world, condition.placement, condition.noise_sigma, config.authors_compat, config.cell);
 
   RunResult result;
   result.condition = condition.name;
@@ -181,8 +180,8 @@ ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver
     out.metric_key = probe->MetricKey();
     out.step_seconds = probe->StepSeconds();
     out.episode_length = probe->EpisodeLength();
-    out.play_per_scenario = config.play_per_scenario >= 0 ? config.play_per_scenario
-                                                          : probe->PlaySamplesPerScenario();
+    out.play_per_scenario =
+        config.play_per_scenario >= 0 ? config.play_per_scenario : probe->PlaySamplesPerScenario();
     const std::vector<ScenarioOutcome> expert = EvaluateExpert(make_world, test_seeds);
     out.expert_metric = Mean(Metrics(expert));
     out.expert_success_rate = SuccessRate(expert);

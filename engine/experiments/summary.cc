@@ -38,13 +38,13 @@ std::string ResultsCsv(const ExperimentResult& result) {
 
 json SummaryBlock(const ConditionSummary& s, const ExperimentResult& result) {
   json block = {{"label", s.label},
-          {"mean", s.mean},
-          {"sem", s.sem},
-          {"n", s.n},
-          {"diverged", s.diverged},
-          {"train_steps", s.train_steps},
-          {"mean_attempts", s.mean_attempts},
-          {"mean_train_seconds", s.mean_train_seconds}};
+                {"mean", s.mean},
+                {"sem", s.sem},
+                {"n", s.n},
+                {"diverged", s.diverged},
+                {"train_steps", s.train_steps},
+                {"mean_attempts", s.mean_attempts},
+                {"mean_train_seconds", s.mean_train_seconds}};
   // The metric also under its own short name ("distance", "action_mse"), as a reader expects.
   if (!result.metric_key.empty()) block[result.metric_key] = s.mean;
   if (!s.details.empty()) block["details"] = s.details;
@@ -238,16 +238,17 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
     // Success is what a lab reads first for a robot task: one group of bars per demo count.
     report::BarChart success;
     success.title = WorldTitle(config) + ": success rate with the beacons removed";
-    success.subtitle = std::to_string(config.runs) + " runs per bar (mean \xC2\xB1 standard "
-                       "error), " + std::to_string(config.tests) + " test scenarios, seed " +
+    success.subtitle = std::to_string(config.runs) +
+                       " runs per bar (mean \xC2\xB1 standard "
+                       "error), " +
+                       std::to_string(config.tests) + " test scenarios, seed " +
                        std::to_string(config.seed);
     success.y_label = "success rate";
     success.y_min = 0.0;
     success.y_max = 1.0;
     for (const ConditionSummary& s : summaries) {
-      success.labels.push_back(config.demos.size() > 1
-                                   ? s.label + ", " + std::to_string(s.demos) + " demos"
-                                   : s.label);
+      success.labels.push_back(
+          config.demos.size() > 1 ? s.label + ", " + std::to_string(s.demos) + " demos" : s.label);
       success.values.push_back(s.success_rate);
       success.errors.push_back(s.success_sem);
     }
@@ -313,7 +314,8 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
   const std::string summary = (root / "summary.json").string();
   json summary_json = SummaryJson(config, result, summaries);
   if (result.step_seconds > 0) summary_json["teaching_time"] = TeachingTime(config, result);
-  if (result.has_success) summary_json["metric"]["expert_success_rate"] = result.expert_success_rate;
+  if (result.has_success)
+    summary_json["metric"]["expert_success_rate"] = result.expert_success_rate;
   WriteFileAtomically(summary, summary_json.dump(2) + "\n");
   written.push_back(summary);
   return written;

@@ -28,7 +28,8 @@ const std::map<std::string, std::string>& MjcfFiles() {
 }
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -37,7 +38,8 @@ std::vector<std::string> SceneNames() {
   std::vector<std::string> names;
   for (const auto& [file, text] : MjcfFiles()) {
     // Scenes are whole models (<mujoco>); parts such as the arm are <mujocoinclude>.
-    if (text.find("<mujocoinclude") == std::string::npos) names.push_back(file.substr(0, file.size() - 4));
+    if (text.find("<mujocoinclude") == std::string::npos)
+      names.push_back(file.substr(0, file.size() - 4));
   }
   return names;
 }

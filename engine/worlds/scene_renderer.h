@@ -22,8 +22,7 @@ class SceneRenderer {
   /// Renders the current state of `scene` (positions as last computed by mj_forward/mj_step)
   /// from the camera named `camera` at width x height pixels. Throws UserError for an unknown
   /// camera or a size above the scene's offscreen buffer (<visual><global offwidth offheight>).
-  virtual RgbImage Render(MujocoModel& scene, const std::string& camera, int width,
-                          int height) = 0;
+  virtual RgbImage Render(MujocoModel& scene, const std::string& camera, int width, int height) = 0;
 };
 
 /// Makes a renderer on the calling thread. Throws UserError when no rendering context can be

@@ -202,8 +202,8 @@ std::vector<float> Tabletop::ExpertAction() const {
   const Eigen::Vector3d toast = ToastPosition();
   const Eigen::Vector3d plate = PlatePosition();
   const bool holding = arm_->HeldObject() == toast_body_;
-  const bool delivered = !holding && PlanarDistance(toast, plate) < kPlateRadius_m &&
-                         toast.z() < kApproachHeight_m;
+  const bool delivered =
+      !holding && PlanarDistance(toast, plate) < kPlateRadius_m && toast.z() < kApproachHeight_m;
   bool close = holding;
   Eigen::Vector3d target;
   if (holding) {
@@ -292,16 +292,21 @@ bool Tabletop::DemonstrationDone() const {
 std::map<std::string, double> Tabletop::OutcomeDetails() const {
   const Eigen::Vector3d start(kToastX, 0.0, kToastRestZ);
   const Eigen::Vector3d grip = arm_->GripPosition();
-  return {{"toast_moved", (ToastPosition() - start).norm() > 0.03 ? 1.0 : 0.0},
-          {"toast_held", arm_->HeldObject() == toast_body_ ? 1.0 : 0.0},
-          {"grip_nearer_bowl",
-           PlanarDistance(grip, BowlPosition()) < PlanarDistance(grip, PlatePosition()) ? 1.0 : 0.0},
-          {"toast_to_bowl_m", ToastToBowlDistance()}};
+  return {
+      {"toast_moved", (ToastPosition() - start).norm() > 0.03 ? 1.0 : 0.0},
+      {"toast_held", arm_->HeldObject() == toast_body_ ? 1.0 : 0.0},
+      {"grip_nearer_bowl",
+       PlanarDistance(grip, BowlPosition()) < PlanarDistance(grip, PlatePosition()) ? 1.0 : 0.0},
+      {"toast_to_bowl_m", ToastToBowlDistance()}};
 }
 
-double Tabletop::ToastToBowlDistance() const { return PlanarDistance(ToastPosition(), BowlPosition()); }
+double Tabletop::ToastToBowlDistance() const {
+  return PlanarDistance(ToastPosition(), BowlPosition());
+}
 
-Eigen::Vector3d Tabletop::ToastPosition() const { return Vec(scene_.data()->xpos + 3 * toast_body_); }
+Eigen::Vector3d Tabletop::ToastPosition() const {
+  return Vec(scene_.data()->xpos + 3 * toast_body_);
+}
 Eigen::Vector3d Tabletop::PlatePosition() const {
   return Vec(scene_.data()->mocap_pos + 3 * scene_.model()->body_mocapid[plate_body_]);
 }

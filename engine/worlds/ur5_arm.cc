@@ -121,9 +121,8 @@ std::vector<std::string> Ur5Arm::GraspableObjects() const {
 
 void Ur5Arm::CommandJointVelocities(const Ur5Joints& qd) {
   for (int i = 0; i < kJoints; ++i) {
-    command_[i] = std::isfinite(qd[i])
-                      ? Clamp(qd[i], -kMaxJointSpeed_rad_s, kMaxJointSpeed_rad_s)
-                      : 0.0;
+    command_[i] =
+        std::isfinite(qd[i]) ? Clamp(qd[i], -kMaxJointSpeed_rad_s, kMaxJointSpeed_rad_s) : 0.0;
   }
 }
 
@@ -239,7 +238,8 @@ std::optional<Ur5Joints> Ur5Arm::SolveGraspIk(const Eigen::Vector3d& target, dou
       mju_subQuat(local_rotation, desired_quat, current_quat);
       mju_rotVecMat(world_rotation, local_rotation, d->site_xmat + 9 * grip_site_);
       for (int k = 0; k < 3; ++k) error[3 + k] = kOrientationWeight * world_rotation[k];
-      if (error.head<3>().norm() < kTolerance_m && error.tail<3>().norm() < 0.01 * kOrientationWeight) {
+      if (error.head<3>().norm() < kTolerance_m &&
+          error.tail<3>().norm() < 0.01 * kOrientationWeight) {
         return q;
       }
       mj_jacSite(m, d, jacp.data(), jacr.data(), grip_site_);
@@ -251,7 +251,8 @@ std::optional<Ur5Joints> Ur5Arm::SolveGraspIk(const Eigen::Vector3d& target, dou
         }
       }
       const Eigen::Matrix<double, 6, 6> jjt =
-          jacobian * jacobian.transpose() + kLambda * kLambda * Eigen::Matrix<double, 6, 6>::Identity();
+          jacobian * jacobian.transpose() +
+          kLambda * kLambda * Eigen::Matrix<double, 6, 6>::Identity();
       const Eigen::Matrix<double, kJoints, 1> dq = jacobian.transpose() * jjt.ldlt().solve(error);
       for (int i = 0; i < kJoints; ++i) {
         const int joint = m->dof_jntid[dof_adr_[i]];

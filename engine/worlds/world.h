@@ -80,8 +80,9 @@ class World {
 };
 
 /// Records one demonstration per seed: Reset(seed), then up to EpisodeLength() steps of
-/// (x, y, b, u) with the expert acting (fewer when DemonstrationDone() says the teacher stopped); also `play_per_scenario` play samples per scenario (drawn from the
-/// initial scenario before the demonstration runs). Used by experiments and by `recon record`.
+/// (x, y, b, u) with the expert acting (fewer when DemonstrationDone() says the teacher stopped);
+/// also `play_per_scenario` play samples per scenario (drawn from the initial scenario before the
+/// demonstration runs). Used by experiments and by `recon record`.
 Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
                              int play_per_scenario);
 

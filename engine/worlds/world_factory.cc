@@ -52,8 +52,9 @@ std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& pla
   if (name == "bintransfer") return MakeBinTransfer(placement, noise_sigma);
   if (name == "tabletop") {
     if (!cell.renderer_factory) {
-      throw UserError("the tabletop world observes camera images and needs a renderer (none "
-                      "was provided)");
+      throw UserError(
+          "the tabletop world observes camera images and needs a renderer (none "
+          "was provided)");
     }
     TabletopOptions options;
     options.placement = placement;

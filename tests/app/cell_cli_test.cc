@@ -95,7 +95,8 @@ TEST(CellCliTest, BinTransferExperimentScoresActionError) {
   const fs::path out = FreshDir("bintransfer");
   const CommandResult r = RunRecon(
       "experiment bintransfer --runs 1 --tests 3 --demos 2 --steps 40 --baseline-steps 30 "
-      "--conditions baseline,recon-p-play --out " + out.string());
+      "--conditions baseline,recon-p-play --out " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json summary = ReadJson(out / "summary.json");
   EXPECT_EQ(summary["metric"]["key"], "action_mse");
@@ -112,7 +113,8 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   const fs::path out = FreshDir("tabletop");
   const CommandResult r = RunRecon(
       "experiment tabletop --runs 1 --tests 2 --demos 1,2 --steps 20 --baseline-steps 20 "
-      "--image-size 32 --seed 3 --out " + out.string());
+      "--image-size 32 --seed 3 --out " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("success"));
   const nlohmann::json summary = ReadJson(out / "summary.json");

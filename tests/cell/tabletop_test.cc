@@ -16,8 +16,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::unique_ptr<Tabletop> MakeTabletop(const std::string& placement = "plate",
-                                       double noise = 0.0, int size = 64) {
+std::unique_ptr<Tabletop> MakeTabletop(const std::string& placement = "plate", double noise = 0.0,
+                                       int size = 64) {
   TabletopOptions options;
   options.placement = placement;
   options.noise_sigma_m = noise;
