@@ -16,37 +16,18 @@
 
 #include "devices/render/mujoco_renderer.h"
 #include "engine/worlds/mujoco_model.h"
+#include "tests/render/test_scene.h"
 
 namespace recon::render {
 namespace {
 
 // The scene of tests/render/test_scene.h, with the multisampling as a parameter.
 std::string Scene(int offsamples) {
-  return R"(
-<mujoco model="render bench">
-  <visual>
-    <global offwidth="640" offheight="480"/>
-    <quality offsamples=")" +
-         std::to_string(offsamples) + R"(" shadowsize="1024"/>
-  </visual>
-  <asset>
-    <material name="grey" rgba="0.5 0.5 0.5 1"/>
-    <material name="red" rgba="1 0 0 1"/>
-    <material name="green" rgba="0 1 0 1"/>
-  </asset>
-  <worldbody>
-    <light directional="true" pos="-0.5 0 1" dir="1 0 -1" castshadow="true"/>
-    <geom name="floor" type="plane" size="1.5 1.5 0.1" material="grey"/>
-    <camera name="top" pos="0 0 2" fovy="45"/>
-    <body name="red_box" mocap="true" pos="0.3 -0.2 0.05">
-      <geom type="box" size="0.08 0.08 0.05" material="red"/>
-    </body>
-    <body name="green_box" pos="0 0.6 0.05">
-      <geom type="box" size="0.06 0.06 0.05" material="green"/>
-    </body>
-  </worldbody>
-</mujoco>
-)";
+  std::string xml = testing::kTestScene;
+  const std::string setting = "offsamples=\"0\"";
+  xml.replace(xml.find(setting), setting.size(),
+              "offsamples=\"" + std::to_string(offsamples) + "\"");
+  return xml;
 }
 
 void SetFramesPerSecond(benchmark::State& state) {

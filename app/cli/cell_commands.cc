@@ -32,28 +32,30 @@ struct RenderFlags {
 };
 
 void RunRender(const RenderFlags& flags) {
-  render::MujocoRenderer renderer;
+  // Every renderer the factory makes on this thread shares one EGL context, the world's too.
+  const worlds::SceneRendererFactory make_renderer = render::MujocoRendererFactory();
+  const std::unique_ptr<worlds::SceneRenderer> renderer = make_renderer();
   RgbImage image;
   if (flags.scene == "tabletop") {
-    // The tabletop world lays the scene out from the seed (plate side, bowl, toast), exactly as
-    // an experiment's scenario with that seed.
+    // The world lays the scene out from the seed (plate side, bowl, toast), exactly as an
+    // experiment's scenario with that seed.
     worlds::TabletopOptions options;
     options.placement = "none";
-    worlds::Tabletop world(options, std::make_unique<render::MujocoRenderer>());
+    worlds::Tabletop world(options, make_renderer());
     world.Reset(flags.seed);
-    image = renderer.Render(world.scene(), flags.camera.empty() ? "top" : flags.camera, flags.width,
-                            flags.height);
+    image = renderer->Render(world.scene(), flags.camera.empty() ? "top" : flags.camera,
+                             flags.width, flags.height);
   } else if (flags.scene == "bintransfer") {
     worlds::BinTransfer world("none", 0.0);
     world.Reset(flags.seed);
-    image = renderer.Render(world.scene(), flags.camera.empty() ? "overhead" : flags.camera,
-                            flags.width, flags.height);
+    image = renderer->Render(world.scene(), flags.camera.empty() ? "overhead" : flags.camera,
+                             flags.width, flags.height);
   } else {
     worlds::MujocoModel scene = worlds::LoadScene(flags.scene);
     worlds::PaintTagTextures(scene);
     mj_forward(scene.model(), scene.data());  // cameras and bodies where the model puts them
-    image = renderer.Render(scene, flags.camera.empty() ? "top" : flags.camera, flags.width,
-                            flags.height);
+    image = renderer->Render(scene, flags.camera.empty() ? "top" : flags.camera, flags.width,
+                             flags.height);
   }
   report::WritePng(image, flags.out);
   std::printf("wrote %s (%d x %d, scene %s, seed %llu)\n", flags.out.c_str(), image.width,

@@ -110,30 +110,37 @@ Eigen::Vector3d Tabletop::DrawBowlPosition(Rng& rng) const {
 
 void Tabletop::Reset(uint64_t seed) {
   rng_.Seed(seed);
-  mjData* d = scene_.data();
-  mj_resetData(scene_.model(), d);
+  mj_resetData(scene_.model(), scene_.data());
   plate_side_ = rng_.Uniform() < 0.5 ? 1 : -1;
   PlaceMocap(plate_body_, {rng_.Uniform(kPlateMinX, kPlateMaxX),
                            plate_side_ * rng_.Uniform(kPlateMinAbsY, kPlateMaxAbsY), 0.0});
-  double* toast = d->qpos + toast_qpos_;
+  PlaceToastAndArm();  // runs mj_forward: the bowl below keeps clear of the current positions
+  PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
+  FinishReset();
+}
+
+void Tabletop::ResetToLayout(uint64_t seed, const Eigen::Vector3d& plate,
+                             const Eigen::Vector3d& bowl) {
+  rng_.Seed(seed);
+  mj_resetData(scene_.model(), scene_.data());
+  plate_side_ = plate.y() >= 0 ? 1 : -1;
+  PlaceMocap(plate_body_, plate);
+  PlaceToastAndArm();
+  PlaceMocap(bowl_body_, bowl);
+  FinishReset();
+}
+
+void Tabletop::PlaceToastAndArm() {
+  double* toast = scene_.data()->qpos + toast_qpos_;
   toast[0] = kToastX + rng_.Uniform(-kToastJitter, kToastJitter);
   toast[1] = rng_.Uniform(-kToastJitter, kToastJitter);
   toast[2] = kToastRestZ;
   toast[3] = 1.0;
   toast[4] = toast[5] = toast[6] = 0.0;
-  arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward, so positions below are current
-  PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
-  mj_forward(scene_.model(), d);
-  CheckReachable();
-  Render();
+  arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward
 }
 
-void Tabletop::ResetToLayout(uint64_t seed, const Eigen::Vector3d& plate,
-                             const Eigen::Vector3d& bowl) {
-  Reset(seed);
-  plate_side_ = plate.y() >= 0 ? 1 : -1;
-  PlaceMocap(plate_body_, plate);
-  PlaceMocap(bowl_body_, bowl);
+void Tabletop::FinishReset() {
   mj_forward(scene_.model(), scene_.data());
   CheckReachable();
   Render();

@@ -97,6 +97,10 @@ class Tabletop : public World {
  private:
   void PlaceMocap(int body, const Eigen::Vector3d& position);
   Eigen::Vector3d DrawBowlPosition(Rng& rng) const;
+  /// The toast at its pick-up place and the arm at home (drawn from rng_ after the plate).
+  void PlaceToastAndArm();
+  /// After the plate and bowl are placed: positions, the reachability check, the first frame.
+  void FinishReset();
   void Render();
   /// UserError if the expert's waypoints of this layout are out of the arm's reach.
   void CheckReachable() const;
