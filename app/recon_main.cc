@@ -6,6 +6,9 @@
 
 #include "app/cli/cell_commands.h"
 #include "app/cli/experiment_command.h"
+#include "app/cli/record_command.h"
+#include "app/cli/session_command.h"
+#include "app/cli/train_commands.h"
 #include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
 
@@ -20,6 +23,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   recon::cli::AddExperimentCommands(app, global);
   recon::cli::AddCellCommands(app);
+  recon::cli::AddRecordCommand(app);
+  recon::cli::AddTrainCommands(app, global);
+  recon::cli::AddSessionCommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,6 +10,14 @@ pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 # Headless rendering: Mesa's EGL with a desktop-GL (compatibility profile) context.
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 find_package(apriltag REQUIRED)
+# Sessions: robomimic-layout HDF5 through the C library (Debian: libhdf5-dev, serial build).
+find_package(HDF5 REQUIRED COMPONENTS C)
+if(NOT TARGET hdf5::hdf5)
+  add_library(hdf5::hdf5 INTERFACE IMPORTED)
+  target_include_directories(hdf5::hdf5 INTERFACE ${HDF5_C_INCLUDE_DIRS})
+  target_link_libraries(hdf5::hdf5 INTERFACE ${HDF5_C_LIBRARIES})
+  target_compile_definitions(hdf5::hdf5 INTERFACE ${HDF5_C_DEFINITIONS})
+endif()
 
 # Torch's CMake config prints warnings about optional CUDA/kineto pieces; they are harmless on CPU.
 find_package(Torch REQUIRED)

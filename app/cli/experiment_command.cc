@@ -15,6 +15,7 @@
 #include "engine/core/strings.h"
 #include "engine/experiments/condition.h"
 #include "engine/experiments/experiment.h"
+#include "engine/experiments/recipe.h"
 #include "engine/experiments/summary.h"
 #include "engine/learn/learner.h"
 #include "engine/worlds/world_factory.h"
@@ -99,13 +100,15 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.baseline_steps = flags.baseline_steps;
   config.play_per_scenario = flags.play;
+  // The world's recipe (recipe.h) for what the user did not set explicitly.
+  const experiments::WorldRecipe recipe =
+      experiments::RecipeForWorld(flags.world, worlds::WorldNeedsRenderer(flags.world));
+  config.network.policy_hidden = recipe.network.policy_hidden;
+  config.network.image_scale = recipe.network.image_scale;
+  if (command.get_option("--restart")->count() == 0) {
+    config.train.restart_rule = recipe.train.restart_rule;
+  }
   if (flags.world == "bintransfer" || flags.world == "tabletop") {
-    // A six-joint arm with grasp phases needs a wider policy than the authors' 2-D one (32, 32):
-    // on tabletop, a (32, 32) policy did not even repeat a training layout; (128, 128) did.
-    config.network.policy_hidden = {128, 128};
-    // The authors' restart thresholds are calibrated to Dynamic 2D's losses; the arm's action
-    // scale differs, so the rule would retrain every run five times for nothing.
-    if (command.get_option("--restart")->count() == 0) config.train.restart_rule = false;
     // Halving the Baseline's steps is the authors' Dynamic 2D habit; here both train as long.
     if (command.get_option("--baseline-steps")->count() == 0) {
       config.baseline_steps = config.train.steps;
@@ -114,9 +117,6 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   if (worlds::WorldNeedsRenderer(flags.world)) {
     config.cell.renderer_factory = render::MujocoRendererFactory();
     config.cell.image_size = flags.image_size;
-    // Camera pixels arrive as 0-255; the CNN trains better on 0-1 (the authors' raw 0-255 was
-    // for their 32 x 32 Dynamic 2D drawings, which the dynamic2d world keeps).
-    config.network.image_scale = 1.0f / 255.0f;
   }
   return config;
 }

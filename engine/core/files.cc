@@ -51,6 +51,22 @@ void WriteFileAtomically(const std::string& path, const std::string& content) {
   ReplaceFile(tmp, path);
 }
 
+void SyncFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw UserError("cannot open " + path + ": " + std::strerror(errno));
+  const int result = ::fsync(fd);
+  const int saved_errno = errno;
+  ::close(fd);
+  if (result != 0) throw UserError("cannot flush " + path + ": " + std::strerror(saved_errno));
+}
+
+void SyncDirectory(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void EnsureWritableDirectory(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);

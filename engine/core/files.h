@@ -19,4 +19,11 @@ std::string TemporarySibling(const std::string& path);
 /// Renames `from` over `to` (atomic on one file system). Throws UserError on failure.
 void ReplaceFile(const std::string& from, const std::string& to);
 
+/// Flushes a file's contents to the disk (fsync), so that a rename made after it survives a power
+/// loss with the contents in place. Throws UserError naming the path.
+void SyncFile(const std::string& path);
+/// Flushes a folder's entries (a rename into it) to the disk. Errors are ignored: some file
+/// systems do not support it, and the rename itself has already happened.
+void SyncDirectory(const std::string& dir);
+
 }  // namespace recon

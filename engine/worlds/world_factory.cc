@@ -1,5 +1,7 @@
 #include "engine/worlds/world_factory.h"
 
+#include <algorithm>
+
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
 #include "engine/worlds/bintransfer.h"
@@ -30,6 +32,35 @@ const std::vector<std::string>& WorldPlacements(const std::string& name) {
   if (name == "bintransfer") return BinTransferPlacements();
   if (name == "tabletop") return Tabletop::Placements();
   ThrowUnknownWorld(name);
+}
+
+std::vector<BeaconSpec> BeaconLayout(const std::string& world, const std::string& placement) {
+  const std::vector<std::string>& placements = WorldPlacements(world);
+  if (std::find(placements.begin(), placements.end(), placement) == placements.end()) {
+    throw UserError("unknown beacon placement '" + placement + "' for " + world +
+                    "; valid placements: " + JoinNames(placements));
+  }
+  if (placement == "none") return {};
+  if (world == "dynamic2d" || world == "dynamic2d-state") {
+    const BeaconSpec red = {"red", "the red object", "position", 2, "px"};
+    const BeaconSpec other = {"other", "the object listed before the red one", "position", 2, "px"};
+    const BeaconSpec random = {"random", "a non-red object drawn per scenario", "position", 2,
+                               "px"};
+    if (placement == "exact") return {red};
+    if (placement == "partial") return {{"red", "the red object", "x position", 1, "px"}};
+    if (placement == "other") return {other};
+    if (placement == "random") return {random};
+    if (placement == "exact+other") return {red, other};
+    if (placement == "exact+random") return {red, random};
+    return {{"red", "the red object", "distance from the robot", 1, "px"}};
+  }
+  if (world == "static2d") {
+    return {{"target", "the centre object", placement, placement == "position" ? 2 : 1, "px"}};
+  }
+  if (world == "bintransfer") {
+    return {{"target", "the object to transfer", placement, placement == "position" ? 3 : 1, "m"}};
+  }
+  return {{"plate", "the plate", "position", 2, "m"}};  // tabletop
 }
 
 std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& placement,

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/beacon_spec.h"
 #include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/world.h"
 
@@ -27,6 +28,11 @@ bool WorldNeedsRenderer(const std::string& name);
 /// Valid beacon placements of a world (throws UserError naming the valid worlds for an unknown
 /// name).
 const std::vector<std::string>& WorldPlacements(const std::string& name);
+
+/// The beacons a placement puts in a world, in the order their readings are concatenated in b
+/// (empty for "none"). Sessions store each under its own name. Throws UserError for an unknown
+/// world or placement.
+std::vector<BeaconSpec> BeaconLayout(const std::string& world, const std::string& placement);
 
 /// Builds a world by name with a beacon placement and noise. `authors_compat` reproduces the
 /// authors' slips in Dynamic 2D and is ignored by the others (which have no reference code).

@@ -1,0 +1,173 @@
+#include "app/cli/record_command.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/cli/session_world.h"
+#include "devices/cell/sim_calibration.h"
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
+#include "engine/core/progress.h"
+#include "engine/core/strings.h"
+#include "engine/store/session.h"
+#include "engine/teach/recorder.h"
+#include "engine/teach/session_setup.h"
+#include "engine/worlds/world_factory.h"
+
+namespace recon::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RecordFlags {
+  std::string session;
+  std::string world;
+  std::string placement;
+  int demos = 5;
+  int play = 0;
+  uint64_t seed = 1;
+  int image_size = 64;
+  double noise = 0.0;
+  std::string calibration;
+  bool no_calibration = false;
+};
+
+std::string Plural(int64_t n, const std::string& word) {
+  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+}
+
+/// A new simulated arm cell is calibrated before teaching, as a lab would: the simulated
+/// calibration (AprilTag ground truth against DWM1001 lines) runs and is attached.
+void CalibrateNewCell(store::Session& session, uint64_t seed) {
+  cell::SimCalibrationOptions options;
+  options.seed = seed;
+  std::printf("calibrating the simulated cell's UWB frame (%d beacon poses, seed %llu)\n",
+              options.points, static_cast<unsigned long long>(seed));
+  std::fflush(stdout);
+  ProgressLine progress("calibrating", options.points);
+  const cell::SimCalibrationResult result =
+      cell::RunSimulatedCalibration(options, [&](int, int) { progress.Advance(); });
+  progress.Finish();
+  const std::string path = (fs::path(session.dir()) / "calibration.json").string();
+  calib::SaveCalibration(result.report, path);
+  session.AttachCalibration(path);
+  std::printf("calibration: RMSE %.4f m over %d points, %s\n", result.report.rmse_m,
+              result.report.num_inliers, result.report.passed ? "PASS" : "FAIL");
+}
+
+void RunRecord(const RecordFlags& flags, const CLI::App& command) {
+  const bool exists = store::Session::Exists(flags.session);
+  std::optional<store::Session> session;
+  teach::SessionSetup setup;
+  if (exists) {
+    // Appending: the session decides the world; flags given must agree with it.
+    session.emplace(store::Session::Open(flags.session));
+    const store::SessionManifest& m = session->manifest();
+    setup.world_name = flags.world.empty() ? m.world : flags.world;
+    setup.placement = flags.placement.empty() ? m.placement : flags.placement;
+    setup.image_size = command.count("--image-size") > 0 ? flags.image_size : m.image_size;
+    setup.seed = command.count("--seed") > 0 ? flags.seed : m.seed;
+    teach::CheckSessionMatches(m, setup);
+    if (session->recovered_temporaries() > 0) {
+      std::printf("removed %d unfinished episode file(s) left by an interrupted recording\n",
+                  session->recovered_temporaries());
+    }
+  } else {
+    if (flags.world.empty()) {
+      throw UserError(flags.session + " is not a session yet: give --world (" +
+                      JoinNames(worlds::WorldNames()) + ") to start one");
+    }
+    setup.world_name = flags.world;
+    setup.placement =
+        flags.placement.empty() ? teach::DefaultTeachingPlacement(flags.world) : flags.placement;
+    setup.image_size = flags.image_size;
+    setup.seed = flags.seed;
+  }
+  setup.beacon_noise_sigma = flags.noise;
+
+  store::SessionManifest probe;
+  probe.world = setup.world_name;
+  probe.placement = setup.placement;
+  probe.image_size = setup.image_size;
+  probe.beacon_noise_sigma = exists ? session->manifest().beacon_noise_sigma : flags.noise;
+  const std::unique_ptr<worlds::World> world = MakeSessionWorld(probe, setup.placement);
+  if (!exists) {
+    session.emplace(
+        store::Session::Create(flags.session, teach::NewSessionManifest(setup, *world)));
+    std::printf("new session %s: %s, beacons: %s\n", flags.session.c_str(),
+                setup.world_name.c_str(), setup.placement.c_str());
+    if (!flags.calibration.empty()) {
+      session->AttachCalibration(flags.calibration);
+    } else if (!flags.no_calibration && setup.world_name != "dynamic2d" &&
+               setup.world_name != "dynamic2d-state" && setup.world_name != "static2d") {
+      CalibrateNewCell(*session, setup.seed);
+    }
+  } else if (!flags.calibration.empty()) {
+    session->AttachCalibration(flags.calibration);
+  }
+
+  std::printf("recording %s and %s into %s (%s, scenario seeds derived from %llu)\n",
+              Plural(flags.demos, "demonstration").c_str(),
+              Plural(flags.play, "play sample").c_str(), flags.session.c_str(),
+              setup.world_name.c_str(), static_cast<unsigned long long>(setup.seed));
+  std::fflush(stdout);
+  ProgressLine progress("recording", flags.demos + flags.play);
+  int last_units = 0;
+  teach::RecordPlan plan;
+  plan.demos = flags.demos;
+  plan.play_samples = flags.play;
+  plan.seed = setup.seed;
+  teach::RecordIntoSession(*session, *world, plan, [&](const teach::RecordProgress& p) {
+    const int units = p.demos_done + p.play_samples_done;
+    progress.Advance(units - last_units, "committed " + p.last_committed);
+    last_units = units;
+  });
+  progress.Finish();
+
+  int64_t samples = 0;
+  for (const store::EpisodeEntry& e : session->demos()) samples += e.meta.num_samples;
+  std::printf("session %s now holds %s (%lld samples, %.1f s of teaching) and %lld play samples\n",
+              flags.session.c_str(), Plural(session->demos().size(), "demonstration").c_str(),
+              static_cast<long long>(samples), session->DemoSeconds(),
+              static_cast<long long>(session->PlaySamples()));
+}
+
+}  // namespace
+
+void AddRecordCommand(CLI::App& app) {
+  auto flags = std::make_shared<RecordFlags>();
+  CLI::App* record = app.add_subcommand(
+      "record", "record demonstrations and play data with the scripted teleop into a session");
+  record->add_option("--session", flags->session, "session folder (created if new)")->required();
+  record->add_option("--world", flags->world,
+                     "the cell's task for a new session: " + JoinNames(worlds::WorldNames()));
+  record->add_option("--placement", flags->placement,
+                     "beacon placement for a new session (default: the paper's RECON one)");
+  record->add_option("--demos", flags->demos, "demonstrations to record")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  record->add_option("--play", flags->play, "play samples to record")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  record
+      ->add_option("--seed", flags->seed,
+                   "scenario seeds of new episodes derive from this and their numbers "
+                   "(default: the session's)")
+      ->capture_default_str();
+  record->add_option("--image-size", flags->image_size, "camera images are N x N (tabletop)")
+      ->check(CLI::Range(16, 480))
+      ->capture_default_str();
+  record->add_option("--noise", flags->noise, "beacon noise sigma for a new session")
+      ->check(CLI::NonNegativeNumber);
+  record->add_option("--calibration", flags->calibration,
+                     "attach this calibration (from `recon calibrate --out`)");
+  record->add_flag("--no-calibration", flags->no_calibration,
+                   "do not calibrate a new simulated arm cell");
+  record->callback([flags, record] { RunRecord(*flags, *record); });
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,219 @@
+#include "app/cli/session_summary.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
+
+namespace recon::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+std::string Format(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, value);
+  return text;
+}
+
+/// training/<method>.json and rollouts/<method>.json, by method.
+json ResultsIn(const store::Session& session, const std::string& folder) {
+  json results = json::object();
+  const fs::path dir = fs::path(session.dir()) / folder;
+  if (!fs::is_directory(dir)) return results;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    if (entry.path().extension() != ".json") continue;
+    if (auto value = ReadJsonFile(entry.path().string())) {
+      results[entry.path().stem().string()] = *value;
+    }
+  }
+  return results;
+}
+
+}  // namespace
+
+std::optional<json> ReadJsonFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  try {
+    return json::parse(text.str());
+  } catch (const json::parse_error& e) {
+    throw UserError(path + ": not valid JSON (" + e.what() + ")");
+  }
+}
+
+json TeachingLedgerJson(const store::Session& session) {
+  const store::SessionManifest& m = session.manifest();
+  const double demos = session.DemoSeconds(false);
+  const double play = session.PlaySeconds();
+  const double placements = static_cast<double>(m.beacons.size()) * m.placements_per_beacon *
+                            m.seconds_per_beacon_placement;
+  int usable = 0;
+  for (const store::EpisodeEntry& e : session.demos()) usable += !e.flags.bad && e.problem.empty();
+  return {{"demonstrations", usable},
+          {"demonstrations_s", demos},
+          {"seconds_per_demonstration", usable > 0 ? demos / usable : 0.0},
+          {"play_s", play},
+          {"beacon_placements_s", placements},
+          {"seconds_per_beacon_placement", m.seconds_per_beacon_placement},
+          {"placements_per_beacon", m.placements_per_beacon},
+          {"baseline_total_s", demos},
+          {"recon_total_s", demos + placements},
+          {"recon_play_total_s", demos + placements + play},
+          {"paper",
+           {{"seconds_per_demonstration", 16.6},
+            {"four_demos_baseline_s", 66.4},
+            {"four_demos_recon_play_s", 75.0}}},
+          {"note",
+           "demonstration and play seconds are what the recordings took (samples x control "
+           "period in the simulated cell); beacon placement uses the paper's measured 2.3 s, "
+           "twice per beacon (on and off)"}};
+}
+
+json EpisodesJson(const store::Session& session) {
+  json list = json::array();
+  for (const auto* entries : {&session.demos(), &session.play_chunks()}) {
+    for (const store::EpisodeEntry& e : *entries) {
+      json item = {{"name", e.name},
+                   {"kind", e.name.rfind("demo_", 0) == 0 ? "demo" : "play"},
+                   {"file", e.path}};
+      if (!e.problem.empty()) {
+        item["problem"] = e.problem;
+      } else {
+        item.update({{"samples", e.meta.num_samples},
+                     {"seed", e.meta.seed},
+                     {"teaching_seconds", e.meta.teaching_seconds},
+                     {"succeeded", e.meta.succeeded},
+                     {"recorded_at", e.meta.recorded_at},
+                     {"source", e.meta.source},
+                     {"bad", e.flags.bad},
+                     {"split", e.flags.split},
+                     {"note", e.flags.note}});
+      }
+      list.push_back(item);
+    }
+  }
+  return list;
+}
+
+json SessionInfoJson(const store::Session& session) {
+  const store::SessionManifest& m = session.manifest();
+  int usable = 0, bad = 0, train = 0, valid = 0, succeeded = 0;
+  int64_t samples = 0;
+  json damaged = json::array();
+  for (const store::EpisodeEntry& e : session.demos()) {
+    if (!e.problem.empty()) {
+      damaged.push_back({{"name", e.name}, {"problem", e.problem}});
+      continue;
+    }
+    ++usable;
+    samples += e.meta.num_samples;
+    bad += e.flags.bad;
+    succeeded += e.meta.succeeded;
+    if (!e.flags.bad) (e.flags.split == "valid" ? valid : train)++;
+  }
+  for (const store::EpisodeEntry& e : session.play_chunks()) {
+    if (!e.problem.empty()) damaged.push_back({{"name", e.name}, {"problem", e.problem}});
+  }
+  json beacons = json::array();
+  for (const BeaconSpec& b : m.beacons) {
+    beacons.push_back({{"name", b.name},
+                       {"object", b.object},
+                       {"quantity", b.quantity},
+                       {"dim", b.dim},
+                       {"unit", b.unit}});
+  }
+  json info = {{"dir", session.dir()},
+               {"world", m.world},
+               {"cell", m.cell},
+               {"placement", m.placement},
+               {"created_at", m.created_at},
+               {"seed", m.seed},
+               {"spec", m.spec.ToString()},
+               {"beacons", beacons},
+               {"episodes", usable},
+               {"demo_samples", samples},
+               {"succeeded", succeeded},
+               {"bad", bad},
+               {"train", train},
+               {"valid", valid},
+               {"play", session.PlaySamples()},
+               {"play_chunks", session.play_chunks().size()},
+               {"damaged", damaged},
+               {"teaching_time", TeachingLedgerJson(session)},
+               {"training", ResultsIn(session, "training")},
+               {"rollouts", ResultsIn(session, "rollouts")}};
+  info["calibration"] = nullptr;
+  if (!m.calibration_file.empty()) {
+    const calib::CalibrationReport cal =
+        calib::LoadCalibration((fs::path(session.dir()) / m.calibration_file).string());
+    info["calibration"] = {{"rmse_m", cal.rmse_m},
+                           {"p95_m", cal.p95_m},
+                           {"points", cal.points.size()},
+                           {"inliers", cal.num_inliers},
+                           {"passed", cal.passed}};
+  }
+  return info;
+}
+
+std::string SessionInfoText(const store::Session& session, const json& info) {
+  std::ostringstream out;
+  const store::SessionManifest& m = session.manifest();
+  out << "session " << session.dir() << ": " << m.world << " (" << m.cell << " cell), created "
+      << m.created_at << ", seed " << m.seed << "\n";
+  out << "  shapes:         " << m.spec.ToString() << "\n";
+  out << "  beacons:        ";
+  if (m.beacons.empty()) out << "none";
+  for (size_t i = 0; i < m.beacons.size(); ++i) {
+    const BeaconSpec& b = m.beacons[i];
+    out << (i > 0 ? "; " : "") << b.name << " on " << b.object << " (" << b.quantity << ", "
+        << b.dim << " values" << (b.unit.empty() ? "" : ", " + b.unit) << ")";
+  }
+  out << "\n";
+  out << "  demonstrations: " << info["episodes"].get<int>() << " committed ("
+      << info["demo_samples"].get<int64_t>() << " samples, " << info["succeeded"].get<int>()
+      << " done the task), " << info["bad"].get<int>() << " bad, " << info["train"].get<int>()
+      << " train / " << info["valid"].get<int>() << " valid\n";
+  out << "  play:           " << info["play"].get<int64_t>() << " samples in "
+      << info["play_chunks"].get<size_t>() << " chunks\n";
+  for (const json& d : info["damaged"]) {
+    out << "  DAMAGED:        " << d["name"].get<std::string>() << ": "
+        << d["problem"].get<std::string>() << "\n";
+  }
+  const json& ledger = info["teaching_time"];
+  out << "  teaching time:  demonstrations " << Format("%.1f", ledger["demonstrations_s"])
+      << " s, play " << Format("%.1f", ledger["play_s"]) << " s, beacon placements "
+      << Format("%.1f", ledger["beacon_placements_s"]) << " s; Baseline "
+      << Format("%.1f", ledger["baseline_total_s"]) << " s vs RECON (Play) "
+      << Format("%.1f", ledger["recon_play_total_s"]) << " s\n";
+  if (info["calibration"].is_null()) {
+    out << "  calibration:    none\n";
+  } else {
+    const json& c = info["calibration"];
+    out << "  calibration:    RMSE " << Format("%.4f", c["rmse_m"]) << " m over "
+        << c["inliers"].get<int>() << " of " << c["points"].get<size_t>() << " points, "
+        << (c["passed"].get<bool>() ? "PASS" : "FAIL") << "\n";
+  }
+  for (const auto& [method, t] : info["training"].items()) {
+    out << "  trained:        " << method << ": " << t.value("steps", 0) << " steps, final loss "
+        << Format("%.4g", t["final"].value("total_loss", 0.0)) << "\n";
+  }
+  for (const auto& [method, r] : info["rollouts"].items()) {
+    out << "  rolled out:     " << method << ": " << r.value("metric_name", std::string("metric"))
+        << " " << Format("%.4g", r.value("metric_mean", 0.0));
+    if (r.value("has_success", false)) {
+      out << ", success " << Format("%.0f", 100.0 * r.value("success_rate", 0.0)) << "%";
+    }
+    out << " over " << r.value("tests", 0) << " scenarios\n";
+  }
+  return out.str();
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <string>
+
+#include "engine/learn/learner.h"
+
+namespace recon::experiments {
+
+/// The networks and training settings RECON Studio uses for a world, shared by the experiments
+/// and by `recon train` on recorded sessions:
+/// - the 2-D worlds: the authors' networks and recipe (restart rule on);
+/// - the arm worlds (bintransfer, tabletop): a (128, 128) policy, since a six-joint arm with grasp
+///   phases needs more than the authors' 2-D (32, 32); on tabletop a (32, 32) policy did not even
+///   repeat a training layout. No restart rule: its thresholds are calibrated to Dynamic 2D's
+///   losses and would retrain every run five times;
+/// - camera images stored as 0-255 (`images_are_bytes`) are scaled to 0-1 before the CNN (the
+///   authors' raw 0-255 was for their 32 x 32 Dynamic 2D drawings, which keep it).
+struct WorldRecipe {
+  learn::NetworkConfig network;
+  learn::TrainConfig train;
+};
+WorldRecipe RecipeForWorld(const std::string& world, bool images_are_bytes);
+
+}  // namespace recon::experiments

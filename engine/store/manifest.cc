@@ -1,0 +1,250 @@
+#include "engine/store/manifest.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+
+namespace recon::store {
+
+namespace {
+
+using json = nlohmann::json;
+
+/// Reads fields of one JSON object and names the field in every error, e.g.
+/// "session.json: field 'beacons[0].dim' must be an integer".
+class FieldReader {
+ public:
+  FieldReader(const json& object, std::string source, std::string prefix)
+      : object_(object), source_(std::move(source)), prefix_(std::move(prefix)) {
+    if (!object_.is_object()) Fail(prefix_.empty() ? "(top level)" : prefix_, "must be an object");
+  }
+
+  const json& Required(const std::string& key) const {
+    if (!object_.contains(key)) Fail(Name(key), "is missing");
+    return object_.at(key);
+  }
+  std::string String(const std::string& key) const {
+    const json& value = Required(key);
+    if (!value.is_string()) Fail(Name(key), "must be a string");
+    return value.get<std::string>();
+  }
+  std::string OptionalString(const std::string& key, const std::string& fallback) const {
+    return object_.contains(key) ? String(key) : fallback;
+  }
+  int64_t Integer(const std::string& key) const {
+    const json& value = Required(key);
+    if (!value.is_number_integer()) Fail(Name(key), "must be an integer");
+    return value.get<int64_t>();
+  }
+  int64_t NonNegativeInteger(const std::string& key) const {
+    const int64_t value = Integer(key);
+    if (value < 0) Fail(Name(key), "must not be negative");
+    return value;
+  }
+  uint64_t Unsigned(const std::string& key) const {
+    const json& value = Required(key);
+    if (!value.is_number_unsigned()) Fail(Name(key), "must be a non-negative integer");
+    return value.get<uint64_t>();
+  }
+  double Number(const std::string& key) const {
+    const json& value = Required(key);
+    if (!value.is_number()) Fail(Name(key), "must be a number");
+    return value.get<double>();
+  }
+  bool Boolean(const std::string& key, bool fallback) const {
+    if (!object_.contains(key)) return fallback;
+    if (!object_.at(key).is_boolean()) Fail(Name(key), "must be true or false");
+    return object_.at(key).get<bool>();
+  }
+  const json& Array(const std::string& key) const {
+    const json& value = Required(key);
+    if (!value.is_array()) Fail(Name(key), "must be a list");
+    return value;
+  }
+  FieldReader Object(const std::string& key) const { return {Required(key), source_, Name(key)}; }
+  FieldReader Element(const json& element, const std::string& key, size_t index) const {
+    return {element, source_, Name(key) + "[" + std::to_string(index) + "]"};
+  }
+  std::string Name(const std::string& key) const {
+    return prefix_.empty() ? key : prefix_ + "." + key;
+  }
+  [[noreturn]] void Fail(const std::string& field, const std::string& problem) const {
+    throw UserError(source_ + ": field '" + field + "' " + problem);
+  }
+  const json& object() const { return object_; }
+
+ private:
+  const json& object_;
+  std::string source_;
+  std::string prefix_;
+};
+
+json SpecToJson(const DataSpec& spec) {
+  return {{"x_dim", spec.x_dim},
+          {"y_shape", spec.y_shape},
+          {"b_dim", spec.b_dim},
+          {"u_dim", spec.u_dim}};
+}
+
+DataSpec SpecFromJson(const FieldReader& reader) {
+  DataSpec spec;
+  spec.x_dim = static_cast<int>(reader.NonNegativeInteger("x_dim"));
+  spec.b_dim = static_cast<int>(reader.NonNegativeInteger("b_dim"));
+  spec.u_dim = static_cast<int>(reader.NonNegativeInteger("u_dim"));
+  const json& shape = reader.Array("y_shape");
+  if (shape.size() != 1 && shape.size() != 3) {
+    reader.Fail(reader.Name("y_shape"), "must have 1 (vector) or 3 (C, H, W) entries");
+  }
+  for (const json& d : shape) {
+    if (!d.is_number_integer() || d.get<int64_t>() <= 0) {
+      reader.Fail(reader.Name("y_shape"), "must hold positive integers");
+    }
+    spec.y_shape.push_back(d.get<int64_t>());
+  }
+  return spec;
+}
+
+}  // namespace
+
+std::string ManifestToJson(const SessionManifest& m) {
+  json devices = json::array();
+  for (const DeviceEntry& d : m.devices) {
+    devices.push_back({{"role", d.role}, {"kind", d.kind}, {"detail", d.detail}});
+  }
+  json beacons = json::array();
+  for (const BeaconSpec& b : m.beacons) {
+    beacons.push_back({{"name", b.name},
+                       {"object", b.object},
+                       {"quantity", b.quantity},
+                       {"dim", b.dim},
+                       {"unit", b.unit}});
+  }
+  json flags = json::object();
+  for (const auto& [name, f] : m.episode_flags) {
+    flags[name] = {{"bad", f.bad}, {"split", f.split}, {"note", f.note}};
+  }
+  const json root = {{"format", "recon-session"},
+                     {"version", m.version},
+                     {"created_at", m.created_at},
+                     {"created_by", m.created_by},
+                     {"cell",
+                      {{"world", m.world},
+                       {"kind", m.cell},
+                       {"placement", m.placement},
+                       {"beacon_noise_sigma", m.beacon_noise_sigma},
+                       {"image_size", m.image_size},
+                       {"step_seconds", m.step_seconds},
+                       {"devices", devices}}},
+                     {"beacons", beacons},
+                     {"spec", SpecToJson(m.spec)},
+                     {"y_encoding", m.y_encoding},
+                     {"calibration_file", m.calibration_file},
+                     {"seeds", {{"session", m.seed}}},
+                     {"ledger",
+                      {{"seconds_per_beacon_placement", m.seconds_per_beacon_placement},
+                       {"placements_per_beacon", m.placements_per_beacon}}},
+                     {"episodes", flags}};
+  return root.dump(2) + "\n";
+}
+
+SessionManifest ManifestFromJson(const std::string& text, const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw UserError(source + ": not valid JSON (" + e.what() + ")");
+  }
+  const FieldReader top(root, source, "");
+  if (top.String("format") != "recon-session") {
+    top.Fail("format", "must be \"recon-session\" (this is not a RECON Studio session manifest)");
+  }
+  SessionManifest m;
+  m.version = static_cast<int>(top.Integer("version"));
+  if (m.version > kManifestVersion) {
+    throw UserError(source + ": field 'version' is " + std::to_string(m.version) +
+                    ", written by a newer RECON Studio; this one reads versions up to " +
+                    std::to_string(kManifestVersion) + ". Update RECON Studio to open it.");
+  }
+  if (m.version < 1) top.Fail("version", "must be at least 1");
+  m.created_at = top.String("created_at");
+  m.created_by = top.String("created_by");
+
+  const FieldReader cell = top.Object("cell");
+  m.world = cell.String("world");
+  m.cell = cell.String("kind");
+  m.placement = cell.String("placement");
+  m.beacon_noise_sigma = cell.Number("beacon_noise_sigma");
+  m.image_size = static_cast<int>(cell.NonNegativeInteger("image_size"));
+  m.step_seconds = cell.Number("step_seconds");
+  const json& devices = cell.Array("devices");
+  for (size_t i = 0; i < devices.size(); ++i) {
+    const FieldReader d = cell.Element(devices[i], "devices", i);
+    m.devices.push_back({d.String("role"), d.String("kind"), d.OptionalString("detail", "")});
+  }
+
+  const json& beacons = top.Array("beacons");
+  for (size_t i = 0; i < beacons.size(); ++i) {
+    const FieldReader b = top.Element(beacons[i], "beacons", i);
+    BeaconSpec beacon;
+    beacon.name = b.String("name");
+    beacon.object = b.String("object");
+    beacon.quantity = b.String("quantity");
+    beacon.dim = static_cast<int>(b.Integer("dim"));
+    if (beacon.dim <= 0) b.Fail(b.Name("dim"), "must be positive");
+    beacon.unit = b.OptionalString("unit", "");
+    if (beacon.name.empty() || beacon.name.find_first_not_of(
+                                   "abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
+      b.Fail(b.Name("name"),
+             "must be lower-case letters, digits and '_' (got '" + beacon.name + "')");
+    }
+    m.beacons.push_back(beacon);
+  }
+  m.spec = SpecFromJson(top.Object("spec"));
+  if (TotalBeaconDim(m.beacons) != m.spec.b_dim) {
+    top.Fail("beacons", "add up to " + std::to_string(TotalBeaconDim(m.beacons)) +
+                            " numbers but spec.b_dim is " + std::to_string(m.spec.b_dim));
+  }
+  m.y_encoding = top.String("y_encoding");
+  if (m.y_encoding != "uint8" && m.y_encoding != "float32") {
+    top.Fail("y_encoding", "must be \"uint8\" or \"float32\" (got \"" + m.y_encoding + "\")");
+  }
+  if (m.y_encoding == "uint8" && !m.spec.YIsImage()) {
+    top.Fail("y_encoding", "is \"uint8\" but spec.y_shape is not an image");
+  }
+  m.calibration_file = top.String("calibration_file");
+  m.seed = top.Object("seeds").Unsigned("session");
+  const FieldReader ledger = top.Object("ledger");
+  m.seconds_per_beacon_placement = ledger.Number("seconds_per_beacon_placement");
+  m.placements_per_beacon = static_cast<int>(ledger.NonNegativeInteger("placements_per_beacon"));
+
+  const FieldReader episodes = top.Object("episodes");
+  for (const auto& [name, value] : episodes.object().items()) {
+    const FieldReader f = episodes.Object(name);
+    EpisodeFlags flags;
+    flags.bad = f.Boolean("bad", false);
+    flags.split = f.OptionalString("split", "train");
+    if (flags.split != "train" && flags.split != "valid") {
+      f.Fail(f.Name("split"), "must be \"train\" or \"valid\" (got \"" + flags.split + "\")");
+    }
+    flags.note = f.OptionalString("note", "");
+    m.episode_flags[name] = flags;
+  }
+  return m;
+}
+
+SessionManifest LoadManifest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path + ": cannot read the session manifest (missing or unreadable)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ManifestFromJson(text.str(), path);
+}
+
+void SaveManifest(const SessionManifest& manifest, const std::string& path) {
+  WriteFileAtomically(path, ManifestToJson(manifest));
+}
+
+}  // namespace recon::store

@@ -1,0 +1,477 @@
+#include "engine/store/session.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <tuple>
+
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/rng.h"
+#include "engine/store/session_index.h"
+
+namespace recon::store {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kManifestName[] = "session.json";
+constexpr char kIndexName[] = "session.hdf5";
+constexpr char kDemoFolder[] = "episodes";
+constexpr char kPlayFolder[] = "play";
+constexpr char kTrashFolder[] = "trash";
+constexpr char kLockName[] = ".lock";
+
+/// The N of "<prefix>N.h5" (or "<prefix>N.<anything>.h5" in trash/), or -1.
+int EpisodeNumber(const std::string& file_name, const std::string& prefix) {
+  if (file_name.rfind(prefix, 0) != 0) return -1;
+  size_t end = prefix.size();
+  while (end < file_name.size() && std::isdigit(static_cast<unsigned char>(file_name[end]))) ++end;
+  if (end == prefix.size() || end - prefix.size() > 9) return -1;
+  const std::string rest = file_name.substr(end);
+  if (rest != ".h5" && rest.rfind('.', 0) != 0) return -1;
+  if (rest.size() < 3 || rest.substr(rest.size() - 3) != ".h5") return -1;
+  return std::stoi(file_name.substr(prefix.size(), end - prefix.size()));
+}
+
+bool IsTemporary(const std::string& file_name) {
+  return file_name.find(".tmp.") != std::string::npos;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError("cannot read " + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// An episode file that cannot be opened or disagrees with the manifest is listed, not fatal:
+// the other episodes stay usable, and the damaged one is named when it would be used.
+struct Inspection {
+  EpisodeMeta meta;
+  std::string problem;
+};
+
+Inspection Inspect(const std::string& path, const SessionManifest& layout,
+                   const std::string& kind) {
+  Inspection result;
+  try {
+    result.meta = ReadEpisodeMeta(path);
+    if (result.meta.kind != kind) {
+      throw UserError(path + ": attribute 'recon_kind' is \"" + result.meta.kind + "\" in the " +
+                      kind + " folder");
+    }
+    CheckEpisodeShapes(path, layout, result.meta);
+  } catch (const UserError& e) {
+    result.problem = e.what();
+  }
+  return result;
+}
+
+}  // namespace
+
+Session Session::Create(const std::string& dir, const SessionManifest& manifest) {
+  if (Exists(dir)) {
+    throw UserError(dir + " already holds a teaching session (" + kManifestName +
+                    "); open it to append, or choose another folder");
+  }
+  EnsureWritableDirectory(dir);
+  Session session;
+  session.dir_ = dir;
+  session.manifest_ = manifest;
+  session.access_ = Access::kReadWrite;
+  session.RequireWritable();
+  fs::create_directories(session.Path(kDemoFolder));
+  fs::create_directories(session.Path(kPlayFolder));
+  session.SaveManifestNow();
+  session.RebuildIndex();
+  return session;
+}
+
+Session Session::Open(const std::string& dir, Access access) {
+  const std::string manifest_path = (fs::path(dir) / kManifestName).string();
+  if (!fs::exists(manifest_path)) {
+    throw UserError(dir + " is not a teaching session (it has no " + kManifestName + ")");
+  }
+  Session session;
+  session.dir_ = dir;
+  session.manifest_ = LoadManifest(manifest_path);
+  session.access_ = access;
+  if (access == Access::kReadWrite) session.RequireWritable();
+  session.Scan();
+  if (access == Access::kReadWrite) session.RebuildIndex();
+  return session;
+}
+
+bool Session::Exists(const std::string& dir) { return fs::exists(fs::path(dir) / kManifestName); }
+
+Session::Session(Session&& other) noexcept { *this = std::move(other); }
+
+Session& Session::operator=(Session&& other) noexcept {
+  if (this != &other) {
+    if (lock_fd_ >= 0) ::close(lock_fd_);
+    dir_ = std::move(other.dir_);
+    manifest_ = std::move(other.manifest_);
+    demos_ = std::move(other.demos_);
+    play_ = std::move(other.play_);
+    access_ = other.access_;
+    lock_fd_ = other.lock_fd_;
+    recovered_temporaries_ = other.recovered_temporaries_;
+    highest_demo_number_ = other.highest_demo_number_;
+    highest_play_number_ = other.highest_play_number_;
+    other.lock_fd_ = -1;
+  }
+  return *this;
+}
+
+Session::~Session() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+}
+
+std::string Session::Path(const std::string& relative) const {
+  return (fs::path(dir_) / relative).string();
+}
+
+void Session::RequireWritable() const {
+  if (access_ != Access::kReadWrite) {
+    throw UserError("session " + dir_ + " was opened read-only");
+  }
+  if (lock_fd_ >= 0) return;
+  // Checked before anything is recorded, so a teacher never demonstrates into a folder that
+  // cannot keep the result.
+  try {
+    EnsureWritableDirectory(dir_);
+  } catch (const UserError&) {
+    throw UserError("session folder " + dir_ + " is not writable (" + std::strerror(EACCES) +
+                    "?): check its permissions; nothing was changed");
+  }
+  const std::string lock_path = Path(kLockName);
+  const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw UserError("session folder " + dir_ + " is not writable: cannot create " + lock_path +
+                    " (" + std::strerror(errno) + ")");
+  }
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    throw UserError("session " + dir_ +
+                    " is being written by another process (recording or editing); wait for it "
+                    "to finish");
+  }
+  const_cast<Session*>(this)->lock_fd_ = fd;
+}
+
+void Session::Scan() {
+  demos_.clear();
+  play_.clear();
+  highest_demo_number_ = highest_play_number_ = -1;
+  const bool writable = access_ == Access::kReadWrite;
+  for (const auto& [folder, prefix, kind, list] :
+       {std::tuple{kDemoFolder, "demo_", "demo", &demos_},
+        std::tuple{kPlayFolder, "play_", "play", &play_}}) {
+    const fs::path folder_path = Path(folder);
+    if (!fs::is_directory(folder_path)) continue;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder_path)) {
+      const std::string file_name = entry.path().filename().string();
+      if (IsTemporary(file_name)) {
+        // An episode that was being written when its writer died: it was never committed.
+        if (writable) {
+          std::error_code ignored;
+          fs::remove(entry.path(), ignored);
+          ++recovered_temporaries_;
+        }
+        continue;
+      }
+      const int number = EpisodeNumber(file_name, prefix);
+      if (number < 0 || file_name != prefix + std::to_string(number) + ".h5") continue;
+      EpisodeEntry e;
+      e.name = prefix + std::to_string(number);
+      e.path = entry.path().string();
+      e.number = number;
+      const Inspection inspection = Inspect(e.path, manifest_, kind);
+      e.meta = inspection.meta;
+      e.problem = inspection.problem;
+      if (auto it = manifest_.episode_flags.find(e.name); it != manifest_.episode_flags.end()) {
+        e.flags = it->second;
+      }
+      list->push_back(e);
+    }
+    std::sort(list->begin(), list->end(),
+              [](const EpisodeEntry& a, const EpisodeEntry& b) { return a.number < b.number; });
+    int& highest = list == &demos_ ? highest_demo_number_ : highest_play_number_;
+    for (const EpisodeEntry& e : *list) highest = std::max(highest, e.number);
+  }
+  // Deleted episodes keep their numbers: a name is never given to different data.
+  if (fs::is_directory(Path(kTrashFolder))) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(Path(kTrashFolder))) {
+      const std::string file_name = entry.path().filename().string();
+      highest_demo_number_ = std::max(highest_demo_number_, EpisodeNumber(file_name, "demo_"));
+      highest_play_number_ = std::max(highest_play_number_, EpisodeNumber(file_name, "play_"));
+    }
+  }
+}
+
+int64_t Session::PlaySamples() const {
+  int64_t total = 0;
+  for (const EpisodeEntry& e : play_) total += e.meta.num_samples;
+  return total;
+}
+
+int Session::NextDemoNumber() const { return highest_demo_number_ + 1; }
+int Session::NextPlayNumber() const { return highest_play_number_ + 1; }
+
+uint64_t Session::ScenarioSeed(uint64_t seed, int number, bool play) {
+  return Rng::Derive(Rng::Derive(seed, play ? 2 : 1), static_cast<uint64_t>(number));
+}
+
+void Session::SaveManifestNow() const { SaveManifest(manifest_, Path(kManifestName)); }
+
+void Session::RebuildIndex() const {
+  RequireWritable();
+  WriteSessionIndex(*this, Path(kIndexName));
+}
+
+namespace {
+
+/// Writes an episode file under a temporary name, flushes it and renames it into place: the
+/// rename is the commit. Whatever fails (or kills the process) before it leaves no episode.
+template <typename Write>
+void CommitFile(const std::string& final_path, const Write& write) {
+  const std::string tmp = TemporarySibling(final_path);
+  try {
+    write(tmp);
+    SyncFile(tmp);
+    ReplaceFile(tmp, final_path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+  SyncDirectory(fs::path(final_path).parent_path().string());
+}
+
+std::string TrashName(const fs::path& trash, const std::string& name) {
+  fs::path target = trash / (name + ".h5");
+  for (int i = 1; fs::exists(target); ++i) {
+    target = trash / (name + "." + std::to_string(i) + ".h5");
+  }
+  return target.string();
+}
+
+}  // namespace
+
+const EpisodeEntry& Session::CommitDemo(const DemoRecord& record,
+                                        const std::optional<std::string>& replace) {
+  RequireWritable();
+  int number = NextDemoNumber();
+  if (replace) number = Find(*replace).number;
+  if (replace && Find(*replace).name.rfind("demo_", 0) != 0) {
+    throw UserError(*replace + " is not a demonstration");
+  }
+  const std::string name = "demo_" + std::to_string(number);
+  const std::string final_path = Path(std::string(kDemoFolder) + "/" + name + ".h5");
+  DemoRecord stamped = record;
+  stamped.meta.kind = "demo";
+  stamped.meta.num_samples = static_cast<int64_t>(record.episode.samples.size());
+  if (stamped.meta.recorded_at.empty()) stamped.meta.recorded_at = NowIso8601();
+  if (replace) {
+    // Keep the old take: hard-link it into trash/ before the new one replaces it atomically.
+    fs::create_directories(Path(kTrashFolder));
+    fs::create_hard_link(final_path, TrashName(Path(kTrashFolder), name));
+  }
+  CommitFile(final_path, [&](const std::string& tmp) { WriteDemoFile(tmp, manifest_, stamped); });
+
+  EpisodeEntry entry;
+  entry.name = name;
+  entry.path = final_path;
+  entry.number = number;
+  entry.meta = stamped.meta;
+  if (replace) {
+    EpisodeEntry& old = FindMutable(name);
+    entry.flags.split = old.flags.split;  // a re-take stays in its split, and is no longer bad
+    old = entry;
+    manifest_.episode_flags[name] = entry.flags;
+    SaveManifestNow();
+  } else {
+    demos_.push_back(entry);
+    highest_demo_number_ = number;
+  }
+  RebuildIndex();
+  return Find(name);
+}
+
+const EpisodeEntry& Session::CommitPlay(const PlayRecord& record) {
+  RequireWritable();
+  const int number = NextPlayNumber();
+  const std::string name = "play_" + std::to_string(number);
+  const std::string final_path = Path(std::string(kPlayFolder) + "/" + name + ".h5");
+  PlayRecord stamped = record;
+  stamped.meta.kind = "play";
+  stamped.meta.num_samples = static_cast<int64_t>(record.samples.size());
+  if (stamped.meta.recorded_at.empty()) stamped.meta.recorded_at = NowIso8601();
+  CommitFile(final_path, [&](const std::string& tmp) { WritePlayFile(tmp, manifest_, stamped); });
+  EpisodeEntry entry;
+  entry.name = name;
+  entry.path = final_path;
+  entry.number = number;
+  entry.meta = stamped.meta;
+  play_.push_back(entry);
+  highest_play_number_ = number;
+  RebuildIndex();
+  return play_.back();
+}
+
+const EpisodeEntry& Session::Find(const std::string& name) const {
+  for (const auto* list : {&demos_, &play_}) {
+    for (const EpisodeEntry& e : *list) {
+      if (e.name == name) return e;
+    }
+  }
+  std::string known;
+  for (const EpisodeEntry& e : demos_) known += (known.empty() ? "" : ", ") + e.name;
+  throw UserError("session " + dir_ + " has no episode '" + name + "'" +
+                  (known.empty() ? " (it has no demonstrations)" : "; demonstrations: " + known));
+}
+
+EpisodeEntry& Session::FindMutable(const std::string& name) {
+  return const_cast<EpisodeEntry&>(Find(name));
+}
+
+void Session::DeleteEpisode(const std::string& name) {
+  RequireWritable();
+  const EpisodeEntry entry = Find(name);
+  fs::create_directories(Path(kTrashFolder));
+  const std::string target = TrashName(Path(kTrashFolder), name);
+  ReplaceFile(entry.path, target);
+  SyncDirectory(Path(kTrashFolder));
+  auto& list = name.rfind("demo_", 0) == 0 ? demos_ : play_;
+  list.erase(std::remove_if(list.begin(), list.end(),
+                            [&](const EpisodeEntry& e) { return e.name == name; }),
+             list.end());
+  if (manifest_.episode_flags.erase(name) > 0) SaveManifestNow();
+  RebuildIndex();
+}
+
+void Session::MarkBad(const std::string& name, bool bad) {
+  RequireWritable();
+  EpisodeEntry& entry = FindMutable(name);
+  entry.flags.bad = bad;
+  manifest_.episode_flags[name] = entry.flags;
+  SaveManifestNow();
+  RebuildIndex();
+}
+
+void Session::SetSplit(const std::string& name, const std::string& split) {
+  RequireWritable();
+  if (split != "train" && split != "valid") {
+    throw UserError("split must be 'train' or 'valid' (got '" + split + "')");
+  }
+  EpisodeEntry& entry = FindMutable(name);
+  if (entry.name.rfind("demo_", 0) != 0)
+    throw UserError(name + " is play data, which has no split");
+  entry.flags.split = split;
+  manifest_.episode_flags[name] = entry.flags;
+  SaveManifestNow();
+  RebuildIndex();
+}
+
+void Session::SetNote(const std::string& name, const std::string& note) {
+  RequireWritable();
+  EpisodeEntry& entry = FindMutable(name);
+  entry.flags.note = note;
+  manifest_.episode_flags[name] = entry.flags;
+  SaveManifestNow();
+}
+
+void Session::AssignSplits(double valid_fraction, uint64_t seed) {
+  RequireWritable();
+  if (!(valid_fraction >= 0.0 && valid_fraction < 1.0)) {
+    throw UserError("the validation fraction must be in [0, 1) (got " +
+                    std::to_string(valid_fraction) + ")");
+  }
+  const size_t n = demos_.size();
+  size_t valid = static_cast<size_t>(valid_fraction * static_cast<double>(n) + 0.5);
+  if (valid_fraction > 0 && valid == 0 && n >= 2) valid = 1;
+  if (valid >= n && n > 0) valid = n - 1;  // keep at least one to train on
+  // A seeded Fisher-Yates shuffle of the indices; the first `valid` go to validation.
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  Rng rng(seed);
+  for (size_t i = n; i > 1; --i) std::swap(order[i - 1], order[rng.UniformInt(i)]);
+  for (size_t i = 0; i < n; ++i) {
+    EpisodeEntry& e = demos_[order[i]];
+    e.flags.split = i < valid ? "valid" : "train";
+    manifest_.episode_flags[e.name] = e.flags;
+  }
+  SaveManifestNow();
+  RebuildIndex();
+}
+
+void Session::AttachCalibration(const std::string& calibration_path) {
+  RequireWritable();
+  calib::LoadCalibration(calibration_path);  // validates before anything is replaced
+  WriteFileAtomically(Path("calibration.json"), ReadText(calibration_path));
+  manifest_.calibration_file = "calibration.json";
+  SaveManifestNow();
+}
+
+DemoRecord Session::ReadDemo(const std::string& name) const {
+  const EpisodeEntry& e = Find(name);
+  if (!e.problem.empty()) throw UserError(e.problem);
+  return ReadDemoFile(e.path, manifest_);
+}
+
+PlayRecord Session::ReadPlay(const std::string& name) const {
+  const EpisodeEntry& e = Find(name);
+  if (!e.problem.empty()) throw UserError(e.problem);
+  return ReadPlayFile(e.path, manifest_);
+}
+
+Dataset Session::LoadDataset(const DatasetOptions& options) const {
+  Dataset dataset;
+  dataset.spec = manifest_.spec;
+  for (const EpisodeEntry& e : demos_) {
+    if (e.flags.bad && !options.include_bad) continue;
+    if (options.split == Split::kTrain && e.flags.split != "train") continue;
+    if (options.split == Split::kValid && e.flags.split != "valid") continue;
+    if (!e.problem.empty()) {
+      throw UserError(e.problem + " (delete the episode with `recon session delete-episode " +
+                      dir_ + " " + e.name + "`, or mark it bad, to train on the others)");
+    }
+    dataset.demos.push_back(ReadDemoFile(e.path, manifest_).episode);
+  }
+  if (options.include_play) {
+    for (const EpisodeEntry& e : play_) {
+      if (!e.problem.empty()) throw UserError(e.problem);
+      PlayRecord chunk = ReadPlayFile(e.path, manifest_);
+      for (PlaySample& s : chunk.samples) dataset.play.push_back(std::move(s));
+    }
+  }
+  return dataset;
+}
+
+double Session::DemoSeconds(bool include_bad) const {
+  double total = 0;
+  for (const EpisodeEntry& e : demos_) {
+    if (include_bad || !e.flags.bad) total += e.meta.teaching_seconds;
+  }
+  return total;
+}
+
+double Session::PlaySeconds() const {
+  double total = 0;
+  for (const EpisodeEntry& e : play_) total += e.meta.teaching_seconds;
+  return total;
+}
+
+}  // namespace recon::store

@@ -1,0 +1,134 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/dataset.h"
+#include "engine/store/episode_file.h"
+#include "engine/store/manifest.h"
+
+namespace recon::store {
+
+/// A committed episode as the session lists it.
+struct EpisodeEntry {
+  std::string name;  ///< "demo_7" or "play_2"
+  std::string path;  ///< its file
+  EpisodeMeta meta;
+  EpisodeFlags flags;
+  int number = 0;  ///< the N of demo_N / play_N
+  /// Why the file cannot be used (unreadable, or shapes that disagree with the manifest); empty
+  /// when it is fine. A damaged episode is listed, never used, and can be deleted.
+  std::string problem;
+};
+
+/// Which demonstrations a dataset is built from.
+enum class Split { kAll, kTrain, kValid };
+
+struct DatasetOptions {
+  Split split = Split::kTrain;
+  bool include_bad = false;  ///< bad episodes are left out unless asked
+  bool include_play = true;  ///< play chunks (never split, never bad)
+};
+
+/// A teaching session: a folder holding
+///
+///   session.json        the manifest (manifest.h), replaced atomically
+///   episodes/demo_N.h5  one file per demonstration (episode_file.h)
+///   play/play_N.h5      one file per chunk of play data
+///   session.hdf5        the robomimic view: data/demo_N and play/play_N linked to the files above,
+///                       mask/train and mask/valid; rebuilt after every change (session_index.h)
+///   calibration.json    the beacon calibration, if one was attached
+///   checkpoints/, training/, rollouts/, report/, trash/
+///
+/// Crash safety: an episode is written to a temporary file and renamed into place; the rename is
+/// the commit. A process killed at any moment leaves every committed episode intact and at most
+/// a temporary file, which the next writer removes. Nothing else has to be consistent with the
+/// episode files: the index is derived from them and rebuilt when stale, and the manifest only
+/// holds flags. One process writes a session at a time (an advisory lock, released by the kernel
+/// when the process dies, however it dies).
+class Session {
+ public:
+  enum class Access { kReadOnly, kReadWrite };
+
+  /// Makes a new session in `dir` (created if needed; it must not already hold a session).
+  /// UserError if the folder cannot be written.
+  static Session Create(const std::string& dir, const SessionManifest& manifest);
+  /// Opens an existing session. kReadWrite also takes the writer lock, removes temporary files
+  /// left by a killed writer (counted in recovered_temporaries()) and rebuilds a stale index.
+  /// UserError naming the file and field for a missing or corrupt manifest, an episode file that
+  /// cannot be read, or an episode whose shapes disagree with the manifest.
+  static Session Open(const std::string& dir, Access access = Access::kReadWrite);
+  /// True when `dir` holds a session manifest.
+  static bool Exists(const std::string& dir);
+
+  Session(Session&&) noexcept;
+  Session& operator=(Session&&) noexcept;
+  ~Session();
+
+  const std::string& dir() const { return dir_; }
+  const SessionManifest& manifest() const { return manifest_; }
+  const std::vector<EpisodeEntry>& demos() const { return demos_; }
+  const std::vector<EpisodeEntry>& play_chunks() const { return play_; }
+  int64_t PlaySamples() const;
+  /// Temporary files of interrupted commits removed when the session was opened.
+  int recovered_temporaries() const { return recovered_temporaries_; }
+
+  /// The number the next demonstration gets (one past every demonstration ever committed,
+  /// deleted ones included, so a name is never reused).
+  int NextDemoNumber() const;
+  int NextPlayNumber() const;
+  /// The scenario seed of demonstration (or play chunk) number `number` under `seed`.
+  static uint64_t ScenarioSeed(uint64_t seed, int number, bool play);
+
+  /// Commits a demonstration atomically as the next demo_N, or in place of `replace` (re-record:
+  /// the old episode moves to trash/ only once the new one is committed). Returns its entry.
+  const EpisodeEntry& CommitDemo(const DemoRecord& record,
+                                 const std::optional<std::string>& replace = std::nullopt);
+  const EpisodeEntry& CommitPlay(const PlayRecord& record);
+
+  /// Moves an episode's file to trash/ (recoverable by moving it back). UserError for an
+  /// unknown name.
+  void DeleteEpisode(const std::string& name);
+  void MarkBad(const std::string& name, bool bad);
+  void SetSplit(const std::string& name, const std::string& split);
+  /// Assigns `valid_fraction` of the demonstrations (at least one if the fraction is positive
+  /// and there are two or more) to validation, drawn with `seed`; the rest to training.
+  void AssignSplits(double valid_fraction, uint64_t seed);
+  /// Records the calibration file (copied into the session as calibration.json).
+  void AttachCalibration(const std::string& calibration_path);
+  void SetNote(const std::string& name, const std::string& note);
+
+  const EpisodeEntry& Find(const std::string& name) const;
+  DemoRecord ReadDemo(const std::string& name) const;
+  PlayRecord ReadPlay(const std::string& name) const;
+  /// Loads demonstrations (and play) into a training dataset. Episodes are read in number order.
+  Dataset LoadDataset(const DatasetOptions& options = {}) const;
+
+  /// Rebuilds session.hdf5 (atomically).
+  void RebuildIndex() const;
+  /// Teacher seconds of the committed demonstrations and play data.
+  double DemoSeconds(bool include_bad = true) const;
+  double PlaySeconds() const;
+
+ private:
+  Session() = default;
+  void RequireWritable() const;
+  void Scan();
+  void SaveManifestNow() const;
+  std::string Path(const std::string& relative) const;
+  EpisodeEntry& FindMutable(const std::string& name);
+
+  std::string dir_;
+  SessionManifest manifest_;
+  std::vector<EpisodeEntry> demos_;
+  std::vector<EpisodeEntry> play_;
+  Access access_ = Access::kReadOnly;
+  int lock_fd_ = -1;
+  int recovered_temporaries_ = 0;
+  int highest_demo_number_ = -1;  ///< including trash/
+  int highest_play_number_ = -1;
+};
+
+}  // namespace recon::store

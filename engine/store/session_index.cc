@@ -1,0 +1,72 @@
+#include "engine/store/session_index.h"
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "engine/core/files.h"
+#include "engine/store/h5.h"
+
+namespace recon::store {
+
+namespace fs = std::filesystem;
+
+std::string EnvArgsJson(const SessionManifest& m) {
+  nlohmann::json beacons = nlohmann::json::array();
+  for (const BeaconSpec& b : m.beacons) {
+    beacons.push_back({{"name", b.name}, {"object", b.object}, {"dim", b.dim}, {"unit", b.unit}});
+  }
+  // robomimic's EnvType has no entry for a RECON cell; 2 (gym-like) is the closest meaning: an
+  // environment built by name from env_kwargs. robomimic needs env_args only to make rollout
+  // environments; training on the file reads the arrays alone.
+  const nlohmann::json args = {{"env_name", "recon/" + m.world},
+                               {"type", 2},
+                               {"env_kwargs",
+                                {{"world", m.world},
+                                 {"cell", m.cell},
+                                 {"placement", m.placement},
+                                 {"beacon_noise_sigma", m.beacon_noise_sigma},
+                                 {"image_size", m.image_size},
+                                 {"control_period_s", m.step_seconds},
+                                 {"beacons", beacons},
+                                 {"seed", m.seed}}}};
+  return args.dump();
+}
+
+void WriteSessionIndex(const Session& session, const std::string& path) {
+  const std::string tmp = TemporarySibling(path);
+  try {
+    h5::File file = h5::File::Create(tmp);
+    const h5::Handle data = h5::CreateGroup(file, file.id(), "data");
+    int64_t total = 0;
+    std::vector<std::string> train, valid;
+    for (const EpisodeEntry& demo : session.demos()) {
+      if (demo.flags.bad || !demo.problem.empty()) continue;
+      const std::string target = (fs::path("episodes") / (demo.name + ".h5")).string();
+      h5::CreateExternalLink(file, data.id(), demo.name, target, "/");
+      total += demo.meta.num_samples;
+      (demo.flags.split == "valid" ? valid : train).push_back(demo.name);
+    }
+    h5::WriteAttribute(file, data.id(), "total", total);
+    h5::WriteAttribute(file, data.id(), "env_args", EnvArgsJson(session.manifest()));
+    const h5::Handle mask = h5::CreateGroup(file, file.id(), "mask");
+    h5::WriteStrings(file, mask.id(), "train", train);
+    h5::WriteStrings(file, mask.id(), "valid", valid);
+    const h5::Handle play = h5::CreateGroup(file, file.id(), "play");
+    int64_t play_total = 0;
+    for (const EpisodeEntry& chunk : session.play_chunks()) {
+      if (!chunk.problem.empty()) continue;
+      const std::string target = (fs::path("play") / (chunk.name + ".h5")).string();
+      h5::CreateExternalLink(file, play.id(), chunk.name, target, "/");
+      play_total += chunk.meta.num_samples;
+    }
+    h5::WriteAttribute(file, play.id(), "total", play_total);
+    file.Close();
+    ReplaceFile(tmp, path);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+}  // namespace recon::store

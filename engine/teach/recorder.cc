@@ -1,0 +1,104 @@
+#include "engine/teach/recorder.h"
+
+#include <algorithm>
+
+#include "engine/core/error.h"
+
+namespace recon::teach {
+
+TeacherAction ScriptedTeacher(const worlds::World& world) { return {world.ExpertAction(), false}; }
+
+DemoRecorder::DemoRecorder(worlds::World& world, Teacher teacher, std::string source)
+    : world_(world), teacher_(std::move(teacher)), source_(std::move(source)) {}
+
+void DemoRecorder::Start(uint64_t seed) {
+  world_.Reset(seed);
+  record_ = {};
+  record_.meta.kind = "demo";
+  record_.meta.seed = seed;
+  record_.meta.source = source_;
+  record_.meta.recorded_at = store::NowIso8601();
+  record_.episode.samples.reserve(world_.EpisodeLength());
+  recording_ = true;
+}
+
+bool DemoRecorder::Tick() {
+  if (!recording_) return false;
+  worlds::Observation obs = world_.Observe();
+  Sample sample;
+  sample.x = std::move(obs.x);
+  sample.y = std::move(obs.y);
+  sample.b = world_.BeaconReading();
+  TeacherAction action = teacher_(world_);
+  sample.u = std::move(action.u);
+  world_.Step(sample.u);
+  record_.episode.samples.push_back(std::move(sample));
+  // robomimic's sparse reward: 1 once the task is done.
+  record_.rewards.push_back(world_.TaskSucceeded() ? 1.0 : 0.0);
+  // A teacher stops recording once the task is done (World::DemonstrationDone), or says so.
+  if (action.finished || world_.DemonstrationDone() || samples() >= world_.EpisodeLength()) {
+    recording_ = false;
+  }
+  return recording_;
+}
+
+store::DemoRecord DemoRecorder::Take() {
+  recording_ = false;
+  record_.meta.num_samples = samples();
+  record_.meta.teaching_seconds = samples() * world_.StepSeconds();
+  record_.meta.succeeded = world_.HasSuccess() && world_.TaskSucceeded();
+  return std::move(record_);
+}
+
+store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count) {
+  world.Reset(seed);
+  const int n = count > 0 ? count : std::max(1, world.PlaySamplesPerScenario());
+  store::PlayRecord record;
+  record.meta.kind = "play";
+  record.meta.seed = seed;
+  record.meta.source = "simulated-play";
+  record.meta.recorded_at = store::NowIso8601();
+  for (int i = 0; i < n; ++i) record.samples.push_back(world.SamplePlay());
+  record.meta.num_samples = n;
+  // The experiments' accounting: a play sample costs the teacher one control period.
+  record.meta.teaching_seconds = n * world.StepSeconds();
+  return record;
+}
+
+void RecordIntoSession(store::Session& session, worlds::World& world, const RecordPlan& plan,
+                       const std::function<void(const RecordProgress&)>& on_commit,
+                       const std::atomic<bool>* cancel) {
+  if (plan.demos < 0 || plan.play_samples < 0) {
+    throw UserError("the numbers of demonstrations and play samples must not be negative");
+  }
+  if (!(world.Spec() == session.manifest().spec)) {
+    throw UserError("the world records " + world.Spec().ToString() + " but session " +
+                    session.dir() + " holds " + session.manifest().spec.ToString());
+  }
+  const auto cancelled = [&] { return cancel != nullptr && cancel->load(); };
+  RecordProgress progress;
+  DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
+  for (int i = 0; i < plan.demos && !cancelled(); ++i) {
+    recorder.Start(store::Session::ScenarioSeed(plan.seed, session.NextDemoNumber(), false));
+    while (recorder.Tick()) {
+    }
+    const store::EpisodeEntry& entry = session.CommitDemo(recorder.Take());
+    ++progress.demos_done;
+    progress.last_committed =
+        entry.name + " (" + std::to_string(entry.meta.num_samples) + " samples" +
+        (world.HasSuccess() ? (entry.meta.succeeded ? ", done" : ", not done") : "") + ")";
+    if (on_commit) on_commit(progress);
+  }
+  while (progress.play_samples_done < plan.play_samples && !cancelled()) {
+    const int chunk_size = std::min(std::max(1, world.PlaySamplesPerScenario()),
+                                    plan.play_samples - progress.play_samples_done);
+    const uint64_t seed = store::Session::ScenarioSeed(plan.seed, session.NextPlayNumber(), true);
+    const store::EpisodeEntry& entry = session.CommitPlay(RecordPlayChunk(world, seed, chunk_size));
+    progress.play_samples_done += static_cast<int>(entry.meta.num_samples);
+    progress.last_committed =
+        entry.name + " (" + std::to_string(entry.meta.num_samples) + " play samples)";
+    if (on_commit) on_commit(progress);
+  }
+}
+
+}  // namespace recon::teach

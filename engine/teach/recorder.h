@@ -1,0 +1,79 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/store/episode_file.h"
+#include "engine/store/session.h"
+#include "engine/worlds/world.h"
+
+namespace recon::teach {
+
+/// What the teacher does at one control step.
+struct TeacherAction {
+  std::vector<float> u;   ///< the action the arm (or point) is driven with
+  bool finished = false;  ///< the teacher ends the demonstration after this step
+};
+
+/// A teacher: reads the world's current state, returns an action. The simulated teacher is the
+/// world's scripted expert (ScriptedTeacher); the app adapts keyboard and gamepad teleops.
+using Teacher = std::function<TeacherAction(const worlds::World&)>;
+
+/// The world's expert as a teacher: its ExpertAction, finished when DemonstrationDone().
+TeacherAction ScriptedTeacher(const worlds::World& world);
+
+/// Records one demonstration a step at a time, so a GUI can tick it from its frame loop and show
+/// the live view between ticks; `recon record` ticks it in a loop. Each tick stores the sample
+/// the teacher saw (x, y, beacon reading b) with the action they took, then steps the world.
+class DemoRecorder {
+ public:
+  /// `source` names the teacher in the episode's metadata, e.g. "scripted-teleop".
+  DemoRecorder(worlds::World& world, Teacher teacher, std::string source);
+
+  /// Resets the world to scenario `seed` and starts a new recording.
+  void Start(uint64_t seed);
+  /// Records one step. Returns false once the recording is over (the teacher finished or the
+  /// world's episode length was reached).
+  bool Tick();
+  bool recording() const { return recording_; }
+  int samples() const { return static_cast<int>(record_.episode.samples.size()); }
+  /// Ends the recording (if still running) and hands over the episode, with its metadata.
+  store::DemoRecord Take();
+
+ private:
+  worlds::World& world_;
+  Teacher teacher_;
+  std::string source_;
+  store::DemoRecord record_;
+  bool recording_ = false;
+};
+
+/// Draws one scenario's worth of play data (World::PlaySamplesPerScenario samples, or `count`
+/// if positive) from scenario `seed`.
+store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count = 0);
+
+/// What `recon record` (and the GUI's "record N demonstrations") does.
+struct RecordPlan {
+  int demos = 0;
+  int play_samples = 0;  ///< recorded in chunks of one scenario each
+  uint64_t seed = 1;     ///< scenario seeds derive from this and each episode's number
+};
+
+/// Progress of a recording run, reported after every committed episode.
+struct RecordProgress {
+  int demos_done = 0;
+  int play_samples_done = 0;
+  std::string last_committed;  ///< e.g. "demo_7 (132 samples, success)"
+};
+
+/// Records plan.demos demonstrations and plan.play_samples play samples into `session`, each
+/// committed atomically as soon as it is recorded. Stops between episodes when *cancel becomes
+/// true (what is committed stays). The world must have the session's shapes.
+void RecordIntoSession(store::Session& session, worlds::World& world, const RecordPlan& plan,
+                       const std::function<void(const RecordProgress&)>& on_commit = {},
+                       const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace recon::teach

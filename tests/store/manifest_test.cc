@@ -1,0 +1,84 @@
+#include "engine/store/manifest.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/core/error.h"
+#include "tests/store/store_test_support.h"
+
+namespace recon::store {
+namespace {
+
+using json = nlohmann::json;
+using ::testing::HasSubstr;
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    ManifestFromJson(text, "s/session.json");
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+json Valid() {
+  SessionManifest m = testing::SmallManifest();
+  m.episode_flags["demo_2"] = {true, "valid", "dropped the toast"};
+  return json::parse(ManifestToJson(m));
+}
+
+TEST(ManifestTest, RoundTripsEveryField) {
+  SessionManifest m = testing::SmallManifest();
+  m.calibration_file = "calibration.json";
+  m.beacon_noise_sigma = 0.02;
+  m.episode_flags["demo_2"] = {true, "valid", "dropped the toast"};
+  EXPECT_EQ(ManifestFromJson(ManifestToJson(m), "x"), m);
+}
+
+TEST(ManifestTest, MissingAndMistypedFieldsAreNamed) {
+  json j = Valid();
+  j["cell"].erase("world");
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("s/session.json: field 'cell.world' is missing"));
+  j = Valid();
+  j["beacons"][1]["dim"] = "one";
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'beacons[1].dim' must be an integer"));
+  j = Valid();
+  j["spec"]["y_shape"] = {3, 0, 4};
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'spec.y_shape' must hold positive integers"));
+  j = Valid();
+  j["episodes"]["demo_2"]["split"] = "test";
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'episodes.demo_2.split' must be"));
+  j = Valid();
+  j.erase("seeds");
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'seeds' is missing"));
+  j = Valid();
+  j["beacons"][0]["name"] = "Red Object";
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'beacons[0].name' must be lower-case"));
+}
+
+TEST(ManifestTest, BeaconsMustAddUpToTheSpec) {
+  json j = Valid();
+  j["spec"]["b_dim"] = 5;
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("add up to 3 numbers but spec.b_dim is 5"));
+}
+
+TEST(ManifestTest, ANewerVersionIsRefusedWithAnExplanation) {
+  json j = Valid();
+  j["version"] = kManifestVersion + 1;
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("written by a newer RECON Studio"));
+  EXPECT_THAT(ErrorOf(j.dump()),
+              HasSubstr("field 'version' is " + std::to_string(kManifestVersion + 1)));
+}
+
+TEST(ManifestTest, NotJsonOrNotOursIsSaid) {
+  EXPECT_THAT(ErrorOf("{\"format\": "), HasSubstr("s/session.json: not valid JSON"));
+  json j = Valid();
+  j["format"] = "lerobot";
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("not a RECON Studio session manifest"));
+  EXPECT_THAT(ErrorOf("[1, 2]"), HasSubstr("must be an object"));
+}
+
+}  // namespace
+}  // namespace recon::store
