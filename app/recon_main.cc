@@ -7,6 +7,7 @@
 #include "app/cli/cell_commands.h"
 #include "app/cli/experiment_command.h"
 #include "app/cli/record_command.h"
+#include "app/cli/report_command.h"
 #include "app/cli/session_command.h"
 #include "app/cli/train_commands.h"
 #include "engine/core/error.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   recon::cli::AddRecordCommand(app);
   recon::cli::AddTrainCommands(app, global);
   recon::cli::AddSessionCommands(app);
+  recon::cli::AddReportCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

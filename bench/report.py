@@ -17,6 +17,10 @@ TARGETS = {
     "bintransfer_demo_realtime_factor": (50.0, "x", "min"),
     "tabletop_step_overhead": (10.0, "%", "max"),
     "bintransfer_step_overhead": (10.0, "%", "max"),
+    # The session store (store_bench): benchmark medians, compared by benchmark name.
+    "BM_CommitEpisode150x64x64": (20.0, "ms", "max"),
+    "BM_OpenSession100": (1000.0, "ms", "max"),
+    "BM_LoadDataset100": (2000.0, "ms", "max"),
 }
 # Rates the cell benchmarks report as counters: result name -> (benchmark, counter, unit).
 COUNTERS = {
@@ -24,6 +28,11 @@ COUNTERS = {
     "tabletop_demo_realtime_factor":
         ("BM_TabletopRecordDemonstration/real_time", "sim_s_per_s", "x"),
     "bintransfer_demo_realtime_factor": ("BM_RecordDemonstration", "sim_s_per_s", "x"),
+    # Informational (no target): the memory a loaded 100-episode tabletop session takes.
+    "store_dataset_100_peak_rss":
+        ("BM_LoadDataset100/iterations:1/real_time", "peak_rss_MB", "MB"),
+    "store_dataset_100_footprint":
+        ("BM_LoadDataset100/iterations:1/real_time", "dataset_MB", "MB"),
 }
 # Our stepping against a bare mj_step loop on the same model: (ours, bare) benchmark names.
 OVERHEADS = {
@@ -45,7 +54,7 @@ def medians(bench_file):
         scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
         rows[b["run_name"]] = b["real_time"] * scale
         counters[b["run_name"]] = {k: v for k, v in b.items() if k.endswith("_per_s")
-                                   or k.endswith("_per_second")}
+                                   or k.endswith("_per_second") or k.endswith("_MB")}
     return rows, counters
 
 
@@ -81,7 +90,8 @@ def main():
         with open(a.figure) as f:
             results["dynamic2d_full_figure"] = {"value": json.load(f)["wall_seconds"], "unit": "s"}
 
-    print(f"\n{'benchmark':46s} {'value':>10s} {'unit':6s} {'target':>12s}  note")
+    width = max([46] + [len(name) for name in results])  # run names can be long
+    print(f"\n{'benchmark':{width}s} {'value':>10s} {'unit':6s} {'target':>12s}  note")
     for name, r in sorted(results.items()):
         note = ""
         target = ""
@@ -98,7 +108,7 @@ def main():
             if reference_ms:
                 r["speedup_vs_pytorch"] = reference_ms / r["value"]
                 note += f", {reference_ms / r['value']:.2f}x PyTorch"
-        print(f"{name:46s} {r['value']:10.3f} {r['unit']:6s} {target:>12s}  {note}")
+        print(f"{name:{width}s} {r['value']:10.3f} {r['unit']:6s} {target:>12s}  {note}")
 
     out = {
         "generated": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),

@@ -99,8 +99,6 @@ std::optional<LineChart> LossChart(const std::vector<LossHistory>& runs) {
   LineChart chart;
   chart.title = "Training losses";
   chart.x_label = "step";
-  chart.y_label = "loss (log scale)";
-  chart.log_y = true;
   std::vector<std::string> labels;
   int curves = 0;
   for (size_t i = 0; i < runs.size(); ++i) {
@@ -122,6 +120,13 @@ std::optional<LineChart> LossChart(const std::vector<LossHistory>& runs) {
     labels.push_back(run.label);
   }
   if (!HasPoints(chart)) return std::nullopt;
+  // Squared errors span decades and read best on a log axis; negative log-likelihoods (the
+  // paper's loss) go below zero, which a log axis cannot show.
+  chart.log_y = true;
+  for (const LineChart::Series& series : chart.series) {
+    for (double v : series.y) chart.log_y = chart.log_y && (!std::isfinite(v) || v > 0);
+  }
+  chart.y_label = chart.log_y ? "loss (log scale)" : "loss";
   chart.subtitle = Join(labels, " vs ") + "; one line per run and loss term";
   return chart;
 }

@@ -142,9 +142,12 @@ Part Losses(const SessionReport& report, FigureFiles& figures) {
     return part;
   }
   part.status = Count(report.losses.size(), "run", "runs");
-  part.body = figures.Add(*chart, "losses",
-                          "Loss per optimiser step on a log scale; terms a run does not train "
-                          "(e.g. the Baseline's beacon and play heads) are absent.");
+  part.body = figures.Add(
+      *chart, "losses",
+      std::string("Loss per optimiser step") +
+          (chart->log_y ? " on a log scale" : " (negative log-likelihoods go below zero)") +
+          "; terms a run does not train (e.g. the Baseline's beacon and play "
+          "heads) are absent.");
   Rows rows;
   for (const auto& run : report.losses) {
     auto last = [](const std::vector<double>& column) {

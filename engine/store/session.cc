@@ -5,12 +5,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <mutex>
 #include <sstream>
+#include <thread>
 #include <tuple>
 
 #include "engine/calib/calibration.h"
@@ -130,6 +135,8 @@ Session& Session::operator=(Session&& other) noexcept {
     recovered_temporaries_ = other.recovered_temporaries_;
     highest_demo_number_ = other.highest_demo_number_;
     highest_play_number_ = other.highest_play_number_;
+    index_deferred_ = other.index_deferred_;
+    index_stale_ = other.index_stale_;
     other.lock_fd_ = -1;
   }
   return *this;
@@ -241,6 +248,22 @@ void Session::RebuildIndex() const {
   WriteSessionIndex(*this, Path(kIndexName));
 }
 
+void Session::DeferIndex(bool defer) {
+  index_deferred_ = defer;
+  if (!defer && index_stale_) {
+    RebuildIndex();
+    index_stale_ = false;
+  }
+}
+
+void Session::IndexChanged() {
+  if (index_deferred_) {
+    index_stale_ = true;
+  } else {
+    RebuildIndex();
+  }
+}
+
 namespace {
 
 /// Writes an episode file under a temporary name, flushes it and renames it into place: the
@@ -306,7 +329,7 @@ const EpisodeEntry& Session::CommitDemo(const DemoRecord& record,
     demos_.push_back(entry);
     highest_demo_number_ = number;
   }
-  RebuildIndex();
+  IndexChanged();
   return Find(name);
 }
 
@@ -327,7 +350,7 @@ const EpisodeEntry& Session::CommitPlay(const PlayRecord& record) {
   entry.meta = stamped.meta;
   play_.push_back(entry);
   highest_play_number_ = number;
-  RebuildIndex();
+  IndexChanged();
   return play_.back();
 }
 
@@ -437,9 +460,45 @@ PlayRecord Session::ReadPlay(const std::string& name) const {
   return ReadPlayFile(e.path, manifest_);
 }
 
+namespace {
+
+/// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first error. Loading
+/// is dominated by the kernel handing the process fresh pages for every sample's vectors (about
+/// 180,000 page faults for 100 camera episodes), which parallelises; HDF5 serialises its own
+/// calls internally.
+void ParallelFor(size_t count, unsigned threads, const std::function<void(size_t)>& job) {
+  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
+  if (threads <= 1) {
+    for (size_t i = 0; i < count; ++i) job(i);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  std::vector<std::thread> workers;
+  for (unsigned t = 0; t < threads; ++t) {
+    workers.emplace_back([&] {
+      for (size_t i = next++; i < count; i = next++) {
+        try {
+          job(i);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error) error = std::current_exception();
+          next = count;
+        }
+      }
+    });
+  }
+  for (std::thread& worker : workers) worker.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace
+
 Dataset Session::LoadDataset(const DatasetOptions& options) const {
   Dataset dataset;
   dataset.spec = manifest_.spec;
+  std::vector<const EpisodeEntry*> demos;
   for (const EpisodeEntry& e : demos_) {
     if (e.flags.bad && !options.include_bad) continue;
     if (options.split == Split::kTrain && e.flags.split != "train") continue;
@@ -448,14 +507,25 @@ Dataset Session::LoadDataset(const DatasetOptions& options) const {
       throw UserError(e.problem + " (delete the episode with `recon session delete-episode " +
                       dir_ + " " + e.name + "`, or mark it bad, to train on the others)");
     }
-    dataset.demos.push_back(ReadDemoFile(e.path, manifest_).episode);
+    demos.push_back(&e);
   }
+  std::vector<const EpisodeEntry*> chunks;
   if (options.include_play) {
     for (const EpisodeEntry& e : play_) {
       if (!e.problem.empty()) throw UserError(e.problem);
-      PlayRecord chunk = ReadPlayFile(e.path, manifest_);
-      for (PlaySample& s : chunk.samples) dataset.play.push_back(std::move(s));
+      chunks.push_back(&e);
     }
+  }
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  dataset.demos.resize(demos.size());
+  ParallelFor(demos.size(), threads, [&](size_t i) {
+    dataset.demos[i] = ReadDemoFile(demos[i]->path, manifest_).episode;
+  });
+  std::vector<std::vector<PlaySample>> play(chunks.size());
+  ParallelFor(chunks.size(), threads,
+              [&](size_t i) { play[i] = ReadPlayFile(chunks[i]->path, manifest_).samples; });
+  for (std::vector<PlaySample>& chunk : play) {
+    for (PlaySample& sample : chunk) dataset.play.push_back(std::move(sample));
   }
   return dataset;
 }

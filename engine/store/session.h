@@ -108,6 +108,12 @@ class Session {
 
   /// Rebuilds session.hdf5 (atomically).
   void RebuildIndex() const;
+  /// While deferred, commits skip rebuilding session.hdf5 (which lists every episode, so
+  /// rebuilding it per commit costs O(episodes)); ending the deferral rebuilds it once. A long
+  /// recording defers it; a reader of session.hdf5 then sees the episodes of the last rebuild
+  /// (the episode files themselves are always current). A killed writer's stale index is
+  /// rebuilt by the next read-write Open.
+  void DeferIndex(bool defer);
   /// Teacher seconds of the committed demonstrations and play data.
   double DemoSeconds(bool include_bad = true) const;
   double PlaySeconds() const;
@@ -119,6 +125,7 @@ class Session {
   void SaveManifestNow() const;
   std::string Path(const std::string& relative) const;
   EpisodeEntry& FindMutable(const std::string& name);
+  void IndexChanged();
 
   std::string dir_;
   SessionManifest manifest_;
@@ -129,6 +136,8 @@ class Session {
   int recovered_temporaries_ = 0;
   int highest_demo_number_ = -1;  ///< including trash/
   int highest_play_number_ = -1;
+  bool index_deferred_ = false;
+  bool index_stale_ = false;
 };
 
 }  // namespace recon::store

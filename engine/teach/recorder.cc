@@ -65,17 +65,11 @@ store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count
   return record;
 }
 
-void RecordIntoSession(store::Session& session, worlds::World& world, const RecordPlan& plan,
-                       const std::function<void(const RecordProgress&)>& on_commit,
-                       const std::atomic<bool>* cancel) {
-  if (plan.demos < 0 || plan.play_samples < 0) {
-    throw UserError("the numbers of demonstrations and play samples must not be negative");
-  }
-  if (!(world.Spec() == session.manifest().spec)) {
-    throw UserError("the world records " + world.Spec().ToString() + " but session " +
-                    session.dir() + " holds " + session.manifest().spec.ToString());
-  }
-  const auto cancelled = [&] { return cancel != nullptr && cancel->load(); };
+namespace {
+
+void RecordEpisodes(store::Session& session, worlds::World& world, const RecordPlan& plan,
+                    const std::function<void(const RecordProgress&)>& on_commit,
+                    const std::function<bool()>& cancelled) {
   RecordProgress progress;
   DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
   for (int i = 0; i < plan.demos && !cancelled(); ++i) {
@@ -99,6 +93,31 @@ void RecordIntoSession(store::Session& session, worlds::World& world, const Reco
         entry.name + " (" + std::to_string(entry.meta.num_samples) + " play samples)";
     if (on_commit) on_commit(progress);
   }
+}
+
+}  // namespace
+
+void RecordIntoSession(store::Session& session, worlds::World& world, const RecordPlan& plan,
+                       const std::function<void(const RecordProgress&)>& on_commit,
+                       const std::atomic<bool>* cancel) {
+  if (plan.demos < 0 || plan.play_samples < 0) {
+    throw UserError("the numbers of demonstrations and play samples must not be negative");
+  }
+  if (!(world.Spec() == session.manifest().spec)) {
+    throw UserError("the world records " + world.Spec().ToString() + " but session " +
+                    session.dir() + " holds " + session.manifest().spec.ToString());
+  }
+  const auto cancelled = [&] { return cancel != nullptr && cancel->load(); };
+  // One index rebuild for the whole run instead of one per episode (Session::DeferIndex); on an
+  // error the index is still brought up to date with what was committed.
+  session.DeferIndex(true);
+  try {
+    RecordEpisodes(session, world, plan, on_commit, cancelled);
+  } catch (...) {
+    session.DeferIndex(false);
+    throw;
+  }
+  session.DeferIndex(false);
 }
 
 }  // namespace recon::teach
