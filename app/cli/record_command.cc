@@ -34,6 +34,7 @@ struct RecordFlags {
   double noise = 0.0;
   std::string calibration;
   bool no_calibration = false;
+  std::string rerecord;
 };
 
 std::string Plural(int64_t n, const std::string& word) {
@@ -61,6 +62,9 @@ void CalibrateNewCell(store::Session& session, uint64_t seed) {
 
 void RunRecord(const RecordFlags& flags, const CLI::App& command) {
   const bool exists = store::Session::Exists(flags.session);
+  if (!flags.rerecord.empty() && !exists) {
+    throw UserError("--rerecord needs an existing session; " + flags.session + " is not one");
+  }
   std::optional<store::Session> session;
   teach::SessionSetup setup;
   if (exists) {
@@ -110,6 +114,13 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
     session->AttachCalibration(flags.calibration);
   }
 
+  if (!flags.rerecord.empty()) {
+    const store::EpisodeEntry& entry = teach::ReRecordDemo(*session, *world, flags.rerecord);
+    std::printf("re-recorded %s (scenario seed %llu, %lld samples); the old take is in %s/trash/\n",
+                entry.name.c_str(), static_cast<unsigned long long>(entry.meta.seed),
+                static_cast<long long>(entry.meta.num_samples), flags.session.c_str());
+    return;
+  }
   std::printf("recording %s and %s into %s (%s, scenario seeds derived from %llu)\n",
               Plural(flags.demos, "demonstration").c_str(),
               Plural(flags.play, "play sample").c_str(), flags.session.c_str(),
@@ -165,6 +176,9 @@ void AddRecordCommand(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   record->add_option("--calibration", flags->calibration,
                      "attach this calibration (from `recon calibrate --out`)");
+  record->add_option("--rerecord", flags->rerecord,
+                     "record demonstration demo_N again in its own scene, replacing it (the old "
+                     "take moves to trash/)");
   record->add_flag("--no-calibration", flags->no_calibration,
                    "do not calibrate a new simulated arm cell");
   record->callback([flags, record] { RunRecord(*flags, *record); });

@@ -64,13 +64,13 @@ constexpr int kPlacementsPerBeacon = 2;  // attach before teaching, remove after
 
 json TeachingTime(const ExperimentConfig& config, const ExperimentResult& result) {
   // A demonstration lasts as long as the recordings did (they stop when the teacher is done).
-  double samples = 0, demos = 0;
+  double samples = 0, recorded_demos = 0;
   for (const RunResult& r : result.runs) {
     samples += static_cast<double>(r.demo_samples);
-    demos += r.demos;
+    recorded_demos += r.demos;
   }
   const double demo_seconds =
-      (demos > 0 ? samples / demos : result.episode_length) * result.step_seconds;
+      (recorded_demos > 0 ? samples / recorded_demos : result.episode_length) * result.step_seconds;
   const double play_seconds_per_demo = result.play_per_scenario * result.step_seconds;
   json totals = json::object();
   for (int demos : config.demos) {

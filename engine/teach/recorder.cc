@@ -120,4 +120,21 @@ void RecordIntoSession(store::Session& session, worlds::World& world, const Reco
   session.DeferIndex(false);
 }
 
+const store::EpisodeEntry& ReRecordDemo(store::Session& session, worlds::World& world,
+                                        const std::string& name) {
+  const store::EpisodeEntry& old = session.Find(name);
+  if (old.name.rfind("demo_", 0) != 0) throw UserError(name + " is not a demonstration");
+  if (!old.problem.empty() && old.meta.seed == 0) {
+    throw UserError(name +
+                    " cannot be re-recorded: its file is damaged and its scenario seed "
+                    "unknown (" +
+                    old.problem + ")");
+  }
+  DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
+  recorder.Start(old.meta.seed);
+  while (recorder.Tick()) {
+  }
+  return session.CommitDemo(recorder.Take(), name);
+}
+
 }  // namespace recon::teach

@@ -76,4 +76,10 @@ void RecordIntoSession(store::Session& session, worlds::World& world, const Reco
                        const std::function<void(const RecordProgress&)>& on_commit = {},
                        const std::atomic<bool>* cancel = nullptr);
 
+/// Records demonstration `name` again, in its own scenario (its stored seed), and replaces it
+/// atomically; the old take moves to the session's trash/ (Session::CommitDemo). What a teacher
+/// does with a demonstration that went wrong.
+const store::EpisodeEntry& ReRecordDemo(store::Session& session, worlds::World& world,
+                                        const std::string& name);
+
 }  // namespace recon::teach
