@@ -122,14 +122,8 @@ json SessionInfoJson(const store::Session& session) {
   for (const store::EpisodeEntry& e : session.play_chunks()) {
     if (!e.problem.empty()) damaged.push_back({{"name", e.name}, {"problem", e.problem}});
   }
-  json beacons = json::array();
-  for (const BeaconSpec& b : m.beacons) {
-    beacons.push_back({{"name", b.name},
-                       {"object", b.object},
-                       {"quantity", b.quantity},
-                       {"dim", b.dim},
-                       {"unit", b.unit}});
-  }
+  // The beacons exactly as the manifest stores them.
+  const json beacons = json::parse(store::ManifestToJson(m))["beacons"];
   json info = {{"dir", session.dir()},
                {"world", m.world},
                {"cell", m.cell},

@@ -10,6 +10,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/strings.h"
+#include "engine/store/atomic_file.h"
 #include "engine/store/h5.h"
 #include "engine/store/session_index.h"
 
@@ -196,8 +197,7 @@ ExportSummary ExportRobomimic(const Session& session, const std::string& path,
                               const ExportOptions& options) {
   const SessionManifest& manifest = session.manifest();
   ExportSummary summary;
-  const std::string tmp = TemporarySibling(path);
-  try {
+  WriteFileVia(path, Durability::kFsync, [&](const std::string& tmp) {
     h5::File file = h5::File::Create(tmp);
     h5::WriteAttribute(file, file.id(), "recon_manifest", ManifestToJson(manifest));
     const h5::Handle data = h5::CreateGroup(file, file.id(), "data");
@@ -229,12 +229,7 @@ ExportSummary ExportRobomimic(const Session& session, const std::string& path,
       h5::WriteAttribute(file, play.id(), "total", summary.play_samples);
     }
     file.Close();
-    ReplaceFile(tmp, path);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
+  });
   return summary;
 }
 

@@ -22,6 +22,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/rng.h"
+#include "engine/store/atomic_file.h"
 #include "engine/store/session_index.h"
 
 namespace recon::store {
@@ -266,23 +267,6 @@ void Session::IndexChanged() {
 
 namespace {
 
-/// Writes an episode file under a temporary name, flushes it and renames it into place: the
-/// rename is the commit. Whatever fails (or kills the process) before it leaves no episode.
-template <typename Write>
-void CommitFile(const std::string& final_path, const Write& write) {
-  const std::string tmp = TemporarySibling(final_path);
-  try {
-    write(tmp);
-    SyncFile(tmp);
-    ReplaceFile(tmp, final_path);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
-  SyncDirectory(fs::path(final_path).parent_path().string());
-}
-
 std::string TrashName(const fs::path& trash, const std::string& name) {
   fs::path target = trash / (name + ".h5");
   for (int i = 1; fs::exists(target); ++i) {
@@ -312,7 +296,10 @@ const EpisodeEntry& Session::CommitDemo(const DemoRecord& record,
     fs::create_directories(Path(kTrashFolder));
     fs::create_hard_link(final_path, TrashName(Path(kTrashFolder), name));
   }
-  CommitFile(final_path, [&](const std::string& tmp) { WriteDemoFile(tmp, manifest_, stamped); });
+  // The rename is the commit; fsync first so that a power loss cannot leave a renamed but empty
+  // episode.
+  WriteFileVia(final_path, Durability::kFsync,
+               [&](const std::string& tmp) { WriteDemoFile(tmp, manifest_, stamped); });
 
   EpisodeEntry entry;
   entry.name = name;
@@ -342,7 +329,8 @@ const EpisodeEntry& Session::CommitPlay(const PlayRecord& record) {
   stamped.meta.kind = "play";
   stamped.meta.num_samples = static_cast<int64_t>(record.samples.size());
   if (stamped.meta.recorded_at.empty()) stamped.meta.recorded_at = NowIso8601();
-  CommitFile(final_path, [&](const std::string& tmp) { WritePlayFile(tmp, manifest_, stamped); });
+  WriteFileVia(final_path, Durability::kFsync,
+               [&](const std::string& tmp) { WritePlayFile(tmp, manifest_, stamped); });
   EpisodeEntry entry;
   entry.name = name;
   entry.path = final_path;

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/files.h"
+#include "engine/store/atomic_file.h"
 #include "engine/store/h5.h"
 
 namespace recon::store {
@@ -33,8 +34,8 @@ std::string EnvArgsJson(const SessionManifest& m) {
 }
 
 void WriteSessionIndex(const Session& session, const std::string& path) {
-  const std::string tmp = TemporarySibling(path);
-  try {
+  // Derived from the episode files (and rebuilt on open), so it needs no fsync.
+  WriteFileVia(path, Durability::kRename, [&](const std::string& tmp) {
     h5::File file = h5::File::Create(tmp);
     const h5::Handle data = h5::CreateGroup(file, file.id(), "data");
     int64_t total = 0;
@@ -61,12 +62,7 @@ void WriteSessionIndex(const Session& session, const std::string& path) {
     }
     h5::WriteAttribute(file, play.id(), "total", play_total);
     file.Close();
-    ReplaceFile(tmp, path);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
+  });
 }
 
 }  // namespace recon::store
