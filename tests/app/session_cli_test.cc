@@ -1,0 +1,643 @@
+// The teaching-session commands (record, session ..., train, eval, report), run end to end
+// through the real `recon` binary as a teacher would: exit codes, JSON output and the files left
+// in the session folder.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "tests/app/run_recon.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+using recon::testing::CommandResult;
+using recon::testing::RunRecon;
+
+// The unprivileged user the permission test runs `recon` as ("nobody").
+constexpr int kNobody = 65534;
+
+/// Runs a shell command line (stdout and stderr together), for h5ls/h5dump and setpriv.
+CommandResult RunShell(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return {-1, "popen failed"};
+  std::string output;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// The JSON document a `--json` command printed (anything printed around it is ignored).
+json ParseJsonOutput(const CommandResult& result) {
+  const size_t begin = result.output.find_first_of("{[");
+  const size_t end = result.output.find_last_of("}]");
+  if (begin == std::string::npos || end == std::string::npos || end < begin) {
+    ADD_FAILURE() << "no JSON in the output:\n" << result.output;
+    return json::object();
+  }
+  try {
+    return json::parse(result.output.substr(begin, end - begin + 1));
+  } catch (const json::exception& e) {
+    ADD_FAILURE() << "unparsable JSON (" << e.what() << "):\n" << result.output;
+    return json::object();
+  }
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+json ReadJson(const fs::path& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+void WriteJson(const fs::path& path, const json& value) {
+  std::ofstream(path) << value.dump(2) << "\n";
+}
+
+/// The bytes of a session's manifest and episode files, by path relative to the session.
+std::map<std::string, std::string> SnapshotSession(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  files["session.json"] = ReadBytes(dir / "session.json");
+  for (const char* folder : {"episodes", "play", "trash"}) {
+    if (!fs::is_directory(dir / folder)) continue;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir / folder)) {
+      files[fs::relative(entry.path(), dir).string()] = ReadBytes(entry.path());
+    }
+  }
+  return files;
+}
+
+/// Episode names of `session episodes --json`, demonstrations only.
+std::vector<std::string> DemoNames(const json& episodes) {
+  std::vector<std::string> names;
+  for (const json& e : episodes) {
+    if (e.value("kind", "") == "demo") names.push_back(e["name"].get<std::string>());
+  }
+  return names;
+}
+
+std::vector<std::string> ExpectedDemoNames(int count) {
+  std::vector<std::string> names;
+  for (int i = 0; i < count; ++i) names.push_back("demo_" + std::to_string(i));
+  return names;
+}
+
+const json* FindEpisode(const json& episodes, const std::string& name) {
+  for (const json& e : episodes) {
+    if (e.value("name", "") == name) return &e;
+  }
+  return nullptr;
+}
+
+/// Each test works in its own folder /tmp/session_cli_<test>_<pid> (mode 0755, so the
+/// unprivileged user of the permission test can reach it), removed at the end.
+class SessionCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    root_ = fs::path("/tmp") / ("session_cli_" + test + "_" + std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+    fs::permissions(root_, fs::perms(0755));
+  }
+
+  void TearDown() override {
+    std::error_code ignored;
+    // A test may have made folders read-only; make them removable again.
+    for (auto it = fs::recursive_directory_iterator(root_, ignored);
+         it != fs::recursive_directory_iterator(); it.increment(ignored)) {
+      if (it->is_directory(ignored)) fs::permissions(it->path(), fs::perms(0755), ignored);
+    }
+    fs::remove_all(root_, ignored);
+  }
+
+  fs::path Path(const std::string& name) const { return root_ / name; }
+
+  static CommandResult Record(const fs::path& session, const std::string& args) {
+    return RunRecon("record --session " + session.string() + " " + args);
+  }
+
+  static json Info(const fs::path& session) {
+    const CommandResult r = RunRecon("session info " + session.string() + " --json");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return ParseJsonOutput(r);
+  }
+
+  static json Episodes(const fs::path& session) {
+    const CommandResult r = RunRecon("session episodes " + session.string() + " --json");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return ParseJsonOutput(r);
+  }
+
+  fs::path root_;
+};
+
+// 1. Recording creates the session; a second `record` appends to it.
+TEST_F(SessionCliTest, RecordThenAppendCountsEverything) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 3, kPlay = 10, kMoreDemos = 2, kMorePlay = 7;
+  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos) +
+                                        " --play " + std::to_string(kPlay) + " --seed 5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const auto check = [&](int demos, int play) {
+    const json info = Info(session);
+    const json episodes = Episodes(session);
+    EXPECT_EQ(info["episodes"], demos);
+    EXPECT_EQ(info["play"], play);
+    EXPECT_EQ(info["world"], "dynamic2d");
+    EXPECT_TRUE(info["damaged"].empty());
+    EXPECT_EQ(DemoNames(episodes), ExpectedDemoNames(demos));
+    int64_t demo_samples = 0, play_samples = 0;
+    double teaching_seconds = 0;
+    std::set<uint64_t> seeds;
+    for (const json& e : episodes) {
+      if (e["kind"] == "demo") {
+        demo_samples += e["samples"].get<int64_t>();
+        teaching_seconds += e["teaching_seconds"].get<double>();
+        seeds.insert(e["seed"].get<uint64_t>());
+        EXPECT_GT(e["samples"].get<int64_t>(), 0) << e.dump();
+      } else {
+        play_samples += e["samples"].get<int64_t>();
+      }
+    }
+    EXPECT_EQ(info["demo_samples"], demo_samples);
+    EXPECT_EQ(play_samples, play);
+    // Every demonstration is its own scenario, appended ones included.
+    EXPECT_EQ(seeds.size(), static_cast<size_t>(demos));
+    EXPECT_EQ(info["teaching_time"]["demonstrations"], demos);
+    EXPECT_NEAR(info["teaching_time"]["demonstrations_s"].get<double>(), teaching_seconds, 1e-6);
+    EXPECT_TRUE(info["calibration"].is_null());
+    EXPECT_TRUE(info["training"].empty());
+    EXPECT_TRUE(info["rollouts"].empty());
+  };
+  check(kDemos, kPlay);
+
+  r = Record(session,
+             "--demos " + std::to_string(kMoreDemos) + " --play " + std::to_string(kMorePlay));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  check(kDemos + kMoreDemos, kPlay + kMorePlay);
+}
+
+// 2. A session keeps one world and one placement.
+TEST_F(SessionCliTest, AppendingWithAnotherWorldOrPlacementChangesNothing) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world dynamic2d --demos 2 --play 4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json before = Info(session);
+  const std::string placement = before["placement"].get<std::string>();
+  ASSERT_NE(placement, "other");
+  const auto files = SnapshotSession(session);
+
+  r = Record(session, "--world static2d --demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("'dynamic2d'"));
+  EXPECT_THAT(r.output, HasSubstr("'static2d'"));
+
+  r = Record(session, "--placement other --demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("'" + placement + "'"));
+  EXPECT_THAT(r.output, HasSubstr("'other'"));
+
+  const json after = Info(session);
+  EXPECT_EQ(after["episodes"], before["episodes"]);
+  EXPECT_EQ(after["play"], before["play"]);
+  EXPECT_EQ(after["world"], "dynamic2d");
+  EXPECT_EQ(after["placement"], placement);
+  EXPECT_EQ(SnapshotSession(session), files);
+}
+
+// 3. A new session needs its world.
+TEST_F(SessionCliTest, FirstRecordWithoutWorldAsksForIt) {
+  const fs::path session = Path("s");
+  const CommandResult r = Record(session, "--demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--world"));
+  EXPECT_THAT(r.output, HasSubstr(session.string()));
+  EXPECT_FALSE(fs::exists(session / "session.json"));
+}
+
+// 4. Deleting moves the file to trash/ and never frees its name.
+TEST_F(SessionCliTest, DeleteEpisodeMovesToTrashAndNamesAreNotReused) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 3;
+  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string last = "demo_" + std::to_string(kDemos - 1);
+
+  r = RunRecon("session delete-episode " + session.string() + " " + last);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(session / "episodes" / (last + ".h5")));
+  EXPECT_TRUE(fs::exists(session / "trash" / (last + ".h5")));
+  EXPECT_EQ(Info(session)["episodes"], kDemos - 1);
+
+  // All named episodes must exist, or nothing is deleted; the error lists the known ones.
+  r = RunRecon("session delete-episode " + session.string() + " demo_0 demo_99");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("demo_99"));
+  for (int i = 0; i < kDemos - 1; ++i) {
+    EXPECT_THAT(r.output, HasSubstr("demo_" + std::to_string(i)));
+  }
+  EXPECT_TRUE(fs::exists(session / "episodes" / "demo_0.h5"));
+
+  r = Record(session, "--demos 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> expected = ExpectedDemoNames(kDemos - 1);
+  expected.push_back("demo_" + std::to_string(kDemos));
+  EXPECT_EQ(DemoNames(Episodes(session)), expected);
+  EXPECT_TRUE(fs::exists(session / "trash" / (last + ".h5")));
+}
+
+// 5. Marks show in `episodes` and in the counts of `info`.
+TEST_F(SessionCliTest, MarkBadSplitAndNote) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 4;
+  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string note = "wobbly grasp near the end";
+
+  r = RunRecon("session mark " + session.string() + " demo_1 --bad");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("session mark " + session.string() + " demo_2 --split valid --note '" + note + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const json episodes = Episodes(session);
+  const json* bad = FindEpisode(episodes, "demo_1");
+  const json* valid = FindEpisode(episodes, "demo_2");
+  const json* plain = FindEpisode(episodes, "demo_0");
+  ASSERT_TRUE(bad != nullptr && valid != nullptr && plain != nullptr) << episodes.dump();
+  EXPECT_EQ((*bad)["bad"], true);
+  EXPECT_EQ((*valid)["bad"], false);
+  EXPECT_EQ((*valid)["split"], "valid");
+  EXPECT_EQ((*valid)["note"], note);
+  EXPECT_EQ((*plain)["bad"], false);
+  EXPECT_EQ((*plain)["split"], "train");
+  EXPECT_EQ((*plain)["note"], "");
+
+  json info = Info(session);
+  EXPECT_EQ(info["episodes"], kDemos);
+  EXPECT_EQ(info["bad"], 1);
+  EXPECT_EQ(info["valid"], 1);
+  EXPECT_EQ(info["train"], kDemos - 2);  // neither the bad one nor the validation one
+  EXPECT_EQ(info["teaching_time"]["demonstrations"], kDemos - 1);
+
+  r = RunRecon("session mark " + session.string() + " demo_1 --good");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  info = Info(session);
+  EXPECT_EQ(info["bad"], 0);
+  EXPECT_EQ(info["train"], kDemos - 1);
+  EXPECT_EQ(info["valid"], 1);
+}
+
+// 5. The same seed draws the same validation split.
+TEST_F(SessionCliTest, SplitIsReproducibleWithItsSeed) {
+  constexpr int kDemos = 6;
+  constexpr double kValid = 0.3;
+  std::vector<std::map<std::string, std::string>> assignments;
+  for (const char* name : {"a", "b"}) {
+    const fs::path session = Path(name);
+    CommandResult r =
+        Record(session, "--world dynamic2d --seed 4 --demos " + std::to_string(kDemos));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    r = RunRecon("session split " + session.string() + " --valid 0.3 --seed 1");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::map<std::string, std::string> split;
+    for (const json& e : Episodes(session)) {
+      if (e["kind"] == "demo") split[e["name"].get<std::string>()] = e["split"];
+    }
+    assignments.push_back(split);
+  }
+  ASSERT_EQ(assignments[0].size(), static_cast<size_t>(kDemos));
+  EXPECT_EQ(assignments[0], assignments[1]);
+  const int expected_valid = static_cast<int>(kValid * kDemos + 0.5);
+  int valid = 0;
+  for (const auto& [name, split] : assignments[0]) valid += split == "valid";
+  EXPECT_EQ(valid, expected_valid);
+  const json info = Info(Path("a"));
+  EXPECT_EQ(info["valid"], expected_valid);
+  EXPECT_EQ(info["train"], kDemos - expected_valid);
+}
+
+// 6. Export to robomimic's layout, and import it back.
+TEST_F(SessionCliTest, ExportWritesRobomimicLayoutAndImportRestoresTheSession) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 4, kPlay = 6;
+  CommandResult r = Record(session, "--world dynamic2d --seed 2 --demos " + std::to_string(kDemos) +
+                                        " --play " + std::to_string(kPlay));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("session mark " + session.string() + " demo_1 --bad");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("session mark " + session.string() + " demo_2 --split valid");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json original = Info(session);
+
+  const fs::path plain = Path("plain.hdf5");
+  r = RunRecon("session export " + session.string() + " --out " + plain.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(plain));
+  CommandResult ls = RunShell(std::string(H5LS) + " -r " + plain.string());
+  ASSERT_EQ(ls.exit_code, 0) << ls.output;
+  for (const char* demo : {"demo_0", "demo_2", "demo_3"}) {
+    const std::string group = std::string("/data/") + demo + "/";
+    for (const char* item : {"obs/", "next_obs/", "actions ", "rewards ", "dones ", "states "}) {
+      EXPECT_THAT(ls.output, HasSubstr(group + item)) << ls.output;
+    }
+  }
+  EXPECT_THAT(ls.output, Not(HasSubstr("/data/demo_1/"))) << "a bad demo was exported";
+  EXPECT_THAT(ls.output, HasSubstr("/mask/train "));
+  EXPECT_THAT(ls.output, HasSubstr("/mask/valid "));
+  EXPECT_THAT(ls.output, HasSubstr("/play/"));
+  const CommandResult masks =
+      RunShell(std::string(H5DUMP) + " -d /mask/valid -d /mask/train " + plain.string());
+  ASSERT_EQ(masks.exit_code, 0) << masks.output;
+  const size_t train_at = masks.output.find("/mask/train");
+  ASSERT_NE(train_at, std::string::npos) << masks.output;
+  const std::string valid_part = masks.output.substr(0, train_at);
+  const std::string train_part = masks.output.substr(train_at);
+  EXPECT_THAT(valid_part, HasSubstr("\"demo_2\""));
+  EXPECT_THAT(train_part, HasSubstr("\"demo_0\""));
+  EXPECT_THAT(train_part, HasSubstr("\"demo_3\""));
+  EXPECT_THAT(train_part, Not(HasSubstr("\"demo_1\"")));
+
+  const fs::path with_bad = Path("with_bad.hdf5");
+  r = RunRecon("session export " + session.string() + " --include-bad --out " + with_bad.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ls = RunShell(std::string(H5LS) + " -r " + with_bad.string());
+  EXPECT_THAT(ls.output, HasSubstr("/data/demo_1/obs/"));
+
+  const fs::path slim = Path("slim.hdf5");
+  r = RunRecon("session export " + session.string() + " --no-play --no-next-obs --out " +
+               slim.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  ls = RunShell(std::string(H5LS) + " -r " + slim.string());
+  EXPECT_THAT(ls.output, HasSubstr("/data/demo_0/obs/"));
+  EXPECT_THAT(ls.output, Not(HasSubstr("next_obs")));
+  EXPECT_THAT(ls.output, Not(HasSubstr("/play")));
+
+  const fs::path imported = Path("imported");
+  r = RunRecon("session import " + with_bad.string() + " --session " + imported.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json copy = Info(imported);
+  for (const char* key :
+       {"episodes", "play", "demo_samples", "valid", "spec", "world", "placement", "beacons"}) {
+    EXPECT_EQ(copy[key], original[key]) << key;
+  }
+  EXPECT_EQ(copy["episodes"], kDemos);
+  EXPECT_EQ(copy["play"], kPlay);
+}
+
+// 7a, 7b. A broken manifest is named with its field.
+TEST_F(SessionCliTest, CorruptManifestIsNamedWithItsField) {
+  const fs::path session = Path("s");
+  const CommandResult r = Record(session, "--world dynamic2d --demos 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json manifest = ReadJson(session / "session.json");
+  ASSERT_TRUE(manifest["cell"].contains("world")) << manifest.dump();
+
+  json missing = manifest;
+  missing["cell"].erase("world");
+  WriteJson(session / "session.json", missing);
+  CommandResult info = RunRecon("session info " + session.string() + " --json");
+  EXPECT_EQ(info.exit_code, 2) << info.output;
+  EXPECT_THAT(info.output, HasSubstr((session / "session.json").string()));
+  EXPECT_THAT(info.output, HasSubstr("cell.world"));
+
+  json newer = manifest;
+  newer["version"] = 99;
+  WriteJson(session / "session.json", newer);
+  info = RunRecon("session info " + session.string());
+  EXPECT_EQ(info.exit_code, 2) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("session.json"));
+  EXPECT_THAT(info.output, HasSubstr("99"));
+  EXPECT_THAT(info.output, HasSubstr("newer"));
+}
+
+// 7c. A truncated episode is listed as damaged, stops training, and can be deleted.
+TEST_F(SessionCliTest, TruncatedEpisodeIsDamagedUntilDeleted) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 3;
+  CommandResult r =
+      Record(session, "--world dynamic2d --demos " + std::to_string(kDemos) + " --play 6");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path episode = session / "episodes" / "demo_1.h5";
+  ASSERT_TRUE(fs::exists(episode));
+  fs::resize_file(episode, fs::file_size(episode) / 2);
+
+  const json info = Info(session);
+  EXPECT_EQ(info["episodes"], kDemos - 1);
+  ASSERT_EQ(info["damaged"].size(), 1u) << info.dump();
+  EXPECT_EQ(info["damaged"][0]["name"], "demo_1");
+  EXPECT_THAT(info["damaged"][0].value("problem", ""), HasSubstr("demo_1.h5"));
+
+  r = RunRecon("train --session " + session.string() + " --steps 200");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(episode.string()));
+  EXPECT_FALSE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
+
+  r = RunRecon("session delete-episode " + session.string() + " demo_1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(session / "trash" / "demo_1.h5"));
+  r = RunRecon("train --session " + session.string() + " --steps 200");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
+  EXPECT_TRUE(fs::exists(session / "checkpoints" / "recon.ckpt"));
+  EXPECT_EQ(ReadJson(session / "training" / "baseline.json")["train_demos"], kDemos - 1);
+}
+
+// 7d. A file that is not HDF5 is refused before any session is made.
+TEST_F(SessionCliTest, ImportOfGarbageNamesTheFileAndCreatesNothing) {
+  const fs::path garbage = Path("garbage.hdf5");
+  std::ofstream(garbage) << "this is not an HDF5 file, just some text\n";
+  const fs::path session = Path("imported");
+  const CommandResult r =
+      RunRecon("session import " + garbage.string() + " --session " + session.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(garbage.string()));
+  EXPECT_FALSE(fs::exists(session));
+  for (const fs::directory_entry& entry : fs::directory_iterator(root_)) {
+    EXPECT_EQ(entry.path(), garbage) << "left behind: " << entry.path();
+  }
+}
+
+// 8. A session folder the user cannot write is refused before anything is recorded.
+TEST_F(SessionCliTest, UnwritableSessionFolderIsRefusedAndUnchanged) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 2;
+  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto files = SnapshotSession(session);
+
+  std::string as_user;  // prefix running recon as a user who cannot write the session
+  if (geteuid() == 0) {
+    if (RunShell("command -v setpriv").exit_code != 0) GTEST_SKIP() << "no setpriv";
+    as_user = "setpriv --reuid=" + std::to_string(kNobody) + " --regid=" + std::to_string(kNobody) +
+              " --clear-groups ";
+    struct stat st {};
+    ASSERT_EQ(stat(session.c_str(), &st), 0);
+    ASSERT_EQ(st.st_uid, 0u);
+    ASSERT_EQ(st.st_mode & 0777, 0755u);
+  } else {
+    fs::permissions(session, fs::perms(0555));
+  }
+
+  r = RunShell(as_user + RECON_CLI + " record --session " + session.string() + " --demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("session folder " + session.string() + " is not writable"));
+  // Reading still works.
+  r = RunShell(as_user + RECON_CLI + " session info " + session.string() + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(ParseJsonOutput(r)["episodes"], kDemos);
+
+  if (geteuid() != 0) fs::permissions(session, fs::perms(0755));
+  EXPECT_EQ(SnapshotSession(session), files);
+}
+
+// 9. Train, evaluate and report on a small session.
+TEST_F(SessionCliTest, TrainEvalAndReport) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 6, kPlay = 30, kTests = 3;
+  CommandResult r = Record(session, "--world dynamic2d --seed 3 --demos " + std::to_string(kDemos) +
+                                        " --play " + std::to_string(kPlay));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  r = RunRecon("eval --session " + session.string() + " --tests " + std::to_string(kTests));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("recon train --session " + session.string()));
+  EXPECT_FALSE(fs::exists(session / "rollouts"));
+
+  r = RunRecon("train --session " + session.string() + " --methods baseline,recon --steps 200");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("eval --session " + session.string() + " --tests " + std::to_string(kTests));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  for (const char* method : {"baseline", "recon"}) {
+    SCOPED_TRACE(method);
+    const std::string file = std::string(method) + ".json";
+    EXPECT_TRUE(fs::exists(session / "checkpoints" / (std::string(method) + ".ckpt")));
+    ASSERT_TRUE(fs::exists(session / "training" / file));
+    ASSERT_TRUE(fs::exists(session / "rollouts" / file));
+    const json training = ReadJson(session / "training" / file);
+    EXPECT_EQ(training["method"], method);
+    EXPECT_EQ(training["train_demos"], kDemos);
+    EXPECT_EQ(training["play_samples"], std::string(method) == "recon" ? kPlay : 0);
+    const json rollout = ReadJson(session / "rollouts" / file);
+    EXPECT_EQ(rollout["method"], method);
+    EXPECT_EQ(rollout["tests"], kTests);
+    EXPECT_EQ(rollout["per_scenario"].size(), static_cast<size_t>(kTests));
+    ASSERT_TRUE(rollout["metric_mean"].is_number()) << rollout.dump();
+    EXPECT_TRUE(std::isfinite(rollout["metric_mean"].get<double>()));
+  }
+  const json info = Info(session);
+  for (const char* method : {"baseline", "recon"}) {
+    EXPECT_TRUE(info["training"].contains(method)) << info["training"].dump();
+    EXPECT_TRUE(info["rollouts"].contains(method));
+    EXPECT_EQ(info["rollouts"][method]["tests"], kTests);
+  }
+
+  r = RunRecon("report " + session.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path html_path = session / "report" / "report.html";
+  ASSERT_TRUE(fs::exists(html_path));
+  const std::string html = ReadBytes(html_path);
+  for (const char* id :
+       {"overview", "losses", "beacons", "calibration", "rollouts", "teaching-time"}) {
+    EXPECT_THAT(html, HasSubstr(std::string("id=\"") + id + "\"")) << id;
+  }
+  const std::regex external(R"((src|href)\s*=\s*["']?\s*(https?:)?//)", std::regex::icase);
+  EXPECT_FALSE(std::regex_search(html, external)) << "the report links outside itself";
+  EXPECT_THAT(html, HasSubstr("data:image/png;base64,"));
+  int pngs = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(session / "report" / "figures")) {
+    if (entry.path().extension() == ".png" && entry.file_size() > 0) ++pngs;
+  }
+  EXPECT_GT(pngs, 0);
+}
+
+// 10. Wrong arguments are usage errors.
+TEST_F(SessionCliTest, WrongArgumentsAreRefused) {
+  const fs::path fresh = Path("fresh");
+  CommandResult r = Record(fresh, "--world dynamic2d --demos -1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--demos"));
+  EXPECT_FALSE(fs::exists(fresh / "session.json"));
+
+  const fs::path session = Path("s");
+  r = Record(session, "--world dynamic2d --demos 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  r = RunRecon("train --session " + session.string() + " --methods foo --steps 200");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("foo"));
+  EXPECT_THAT(r.output, HasSubstr("recon"));
+  EXPECT_THAT(r.output, HasSubstr("baseline"));
+  EXPECT_FALSE(fs::exists(session / "checkpoints"));
+
+  const std::string manifest = ReadBytes(session / "session.json");
+  r = RunRecon("session mark " + session.string() + " demo_0");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--bad"));
+  r = RunRecon("session mark " + session.string() + " demo_0 --split sideways");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("sideways"));
+  EXPECT_EQ(ReadBytes(session / "session.json"), manifest);
+}
+
+// A simulated arm cell: calibrated on creation, or with a given calibration, or none.
+TEST_F(SessionCliTest, BinTransferSessionCalibration) {
+  const fs::path calibration = Path("calibration.json");
+  constexpr int kPoints = 8;
+  CommandResult r = RunRecon("calibrate --sim --points " + std::to_string(kPoints) +
+                             " --seed 2 --out " + calibration.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const fs::path calibrated = Path("calibrated");
+  r = Record(calibrated, "--world bintransfer --demos 1 --play 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json info = Info(calibrated);
+  EXPECT_EQ(info["world"], "bintransfer");
+  EXPECT_EQ(info["episodes"], 1);
+  EXPECT_EQ(info["play"], 3);
+  ASSERT_TRUE(info["calibration"].is_object()) << info.dump();
+  EXPECT_GT(info["calibration"]["points"].get<int>(), 0);
+  EXPECT_TRUE(fs::exists(calibrated / "calibration.json"));
+
+  const fs::path given = Path("given");
+  r = Record(given, "--world bintransfer --demos 1 --calibration " + calibration.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  info = Info(given);
+  ASSERT_TRUE(info["calibration"].is_object()) << info.dump();
+  EXPECT_EQ(info["calibration"]["points"], kPoints);
+  EXPECT_EQ(ReadBytes(given / "calibration.json"), ReadBytes(calibration));
+
+  const fs::path none = Path("none");
+  r = Record(none, "--world bintransfer --demos 1 --no-calibration");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(Info(none)["calibration"].is_null());
+  EXPECT_FALSE(fs::exists(none / "calibration.json"));
+}
+
+}  // namespace
