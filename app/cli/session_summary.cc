@@ -57,7 +57,9 @@ json TeachingLedgerJson(const store::Session& session) {
                             m.seconds_per_beacon_placement;
   int usable = 0;
   for (const store::EpisodeEntry& e : session.demos()) usable += !e.flags.bad && e.problem.empty();
-  return {{"demonstrations", usable},
+  const bool timed = m.step_seconds > 0;
+  return {{"timed", timed},
+          {"demonstrations", usable},
           {"demonstrations_s", demos},
           {"seconds_per_demonstration", usable > 0 ? demos / usable : 0.0},
           {"play_s", play},
@@ -72,9 +74,12 @@ json TeachingLedgerJson(const store::Session& session) {
             {"four_demos_baseline_s", 66.4},
             {"four_demos_recon_play_s", 75.0}}},
           {"note",
-           "demonstration and play seconds are what the recordings took (samples x control "
-           "period in the simulated cell); beacon placement uses the paper's measured 2.3 s, "
-           "twice per beacon (on and off)"}};
+           timed ? "demonstration and play seconds are what the recordings took (samples x "
+                   "control period in the simulated cell); beacon placement uses the paper's "
+                   "measured 2.3 s, twice per beacon (on and off)"
+                 : "this world is abstract (no control period), so its demonstrations and play "
+                   "cost no teaching time here; beacon placement uses the paper's measured 2.3 s, "
+                   "twice per beacon (on and off)"}};
 }
 
 json EpisodesJson(const store::Session& session) {
@@ -182,11 +187,17 @@ std::string SessionInfoText(const store::Session& session, const json& info) {
         << d["problem"].get<std::string>() << "\n";
   }
   const json& ledger = info["teaching_time"];
-  out << "  teaching time:  demonstrations " << Format("%.1f", ledger["demonstrations_s"])
-      << " s, play " << Format("%.1f", ledger["play_s"]) << " s, beacon placements "
-      << Format("%.1f", ledger["beacon_placements_s"]) << " s; Baseline "
-      << Format("%.1f", ledger["baseline_total_s"]) << " s vs RECON (Play) "
-      << Format("%.1f", ledger["recon_play_total_s"]) << " s\n";
+  if (!ledger["timed"].get<bool>()) {
+    out << "  teaching time:  not timed (an abstract world has no control period); beacon "
+           "placements would add "
+        << Format("%.1f", ledger["beacon_placements_s"]) << " s\n";
+  } else {
+    out << "  teaching time:  demonstrations " << Format("%.1f", ledger["demonstrations_s"])
+        << " s, play " << Format("%.1f", ledger["play_s"]) << " s, beacon placements "
+        << Format("%.1f", ledger["beacon_placements_s"]) << " s; Baseline "
+        << Format("%.1f", ledger["baseline_total_s"]) << " s vs RECON (Play) "
+        << Format("%.1f", ledger["recon_play_total_s"]) << " s\n";
+  }
   if (info["calibration"].is_null()) {
     out << "  calibration:    none\n";
   } else {

@@ -20,12 +20,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// data/demo_N names in number order (robomimic sorts them the same way).
-std::vector<std::string> DemoNames(const h5::File& file, hid_t data) {
+/// <prefix>N names of a group in number order (robomimic sorts demo_N the same way).
+std::vector<std::string> NumberedNames(const h5::File& file, hid_t group,
+                                       const std::string& prefix = "demo_") {
   std::vector<std::pair<long, std::string>> numbered;
-  for (const std::string& name : h5::ListChildren(file, data)) {
-    if (name.rfind("demo_", 0) != 0 || name.size() == 5) continue;
-    const std::string digits = name.substr(5);
+  for (const std::string& name : h5::ListChildren(file, group)) {
+    if (name.rfind(prefix, 0) != 0 || name.size() == prefix.size()) continue;
+    const std::string digits = name.substr(prefix.size());
     if (!std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(c); })) {
       continue;
     }
@@ -236,7 +237,7 @@ ExportSummary ExportRobomimic(const Session& session, const std::string& path,
 std::vector<std::string> DescribeObsKeys(const std::string& path) {
   const h5::File file = h5::File::OpenReadOnly(path);
   const h5::Handle data = h5::OpenGroup(file, file.id(), "data");
-  const std::vector<std::string> demos = DemoNames(file, data.id());
+  const std::vector<std::string> demos = NumberedNames(file, data.id());
   if (demos.empty()) h5::Fail(path, "group 'data' holds no demo_N groups");
   const h5::Handle obs = h5::OpenGroup(file, data.id(), demos.front() + "/obs");
   std::vector<std::string> keys;
@@ -253,20 +254,25 @@ ImportSummary ImportRobomimic(const std::string& path, const std::string& sessio
   if (Session::Exists(session_dir)) {
     throw UserError(session_dir + " already holds a teaching session; import into a new folder");
   }
+  if (fs::exists(session_dir) && !(fs::is_directory(session_dir) && fs::is_empty(session_dir))) {
+    throw UserError(session_dir + " already exists; import into a new (or empty) folder");
+  }
   const h5::File file = h5::File::OpenReadOnly(path);
   if (!h5::Exists(file.id(), "data")) {
     h5::Fail(path, "not a robomimic file: it has no group 'data'");
   }
   const h5::Handle data = h5::OpenGroup(file, file.id(), "data");
-  const std::vector<std::string> names = DemoNames(file, data.id());
+  const std::vector<std::string> names = NumberedNames(file, data.id());
   if (names.empty()) h5::Fail(path, "group 'data' holds no demo_N groups");
 
   ImportSummary summary;
   summary.from_recon = h5::HasAttribute(file.id(), "recon_manifest");
   SessionManifest manifest;
+  std::map<std::string, EpisodeFlags> source_flags;  // by the file's demo names
   if (summary.from_recon) {
     manifest = ManifestFromJson(h5::ReadStringAttribute(file, file.id(), "recon_manifest"),
                                 path + " (attribute recon_manifest)");
+    source_flags = std::move(manifest.episode_flags);
     manifest.episode_flags.clear();
   } else {
     if (mapping.x_keys.empty() || mapping.y_key.empty()) {
@@ -288,6 +294,7 @@ ImportSummary ImportRobomimic(const std::string& path, const std::string& sessio
   try {
     {
       Session session = Session::Create(staging, manifest);
+      session.DeferIndex(true);
       const std::vector<std::string> valid = ValidNames(file);
       for (const std::string& name : names) {
         DemoRecord record;
@@ -298,20 +305,23 @@ ImportSummary ImportRobomimic(const std::string& path, const std::string& sessio
           record = ReadMappedDemo(file, data.id(), name, manifest, mapping);
         }
         const EpisodeEntry& entry = session.CommitDemo(record);
-        if (std::find(valid.begin(), valid.end(), name) != valid.end()) {
-          session.SetSplit(entry.name, "valid");
-        }
+        // Demonstrations are renumbered from demo_0 in order; their flags follow them.
+        EpisodeFlags flags;
+        if (auto it = source_flags.find(name); it != source_flags.end()) flags = it->second;
+        if (std::find(valid.begin(), valid.end(), name) != valid.end()) flags.split = "valid";
+        if (!(flags == EpisodeFlags{})) session.SetFlags(entry.name, flags);
         ++summary.demos;
         summary.samples += entry.meta.num_samples;
       }
       if (summary.from_recon && h5::Exists(file.id(), "play")) {
         const h5::Handle play = h5::OpenGroup(file, file.id(), "play");
-        for (const std::string& name : h5::ListChildren(file, play.id())) {
+        for (const std::string& name : NumberedNames(file, play.id(), "play_")) {
           const h5::Handle group = h5::OpenGroup(file, play.id(), name);
           const EpisodeEntry& entry = session.CommitPlay(ReadPlayGroup(file, group.id(), manifest));
           summary.play_samples += entry.meta.num_samples;
         }
       }
+      session.DeferIndex(false);
     }
     if (target.has_parent_path()) fs::create_directories(target.parent_path());
     fs::rename(staging, target);

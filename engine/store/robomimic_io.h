@@ -23,7 +23,9 @@ struct ExportSummary {
 /// Writes one self-contained robomimic HDF5 file (REFERENCE.md 7): data/demo_N with obs,
 /// next_obs, actions, rewards, dones, states and num_samples; data.attrs total and env_args;
 /// mask/train and mask/valid; play data under /play. The session's manifest is kept as the root
-/// attribute `recon_manifest`, so importing the file gives back the same session. Written to a
+/// attribute `recon_manifest`, so importing the file gives back the same session: its settings,
+/// episodes with their data, seeds and flags (bad, split, note), and play data; demonstrations
+/// are renumbered from demo_0 in order (a session's names may have gaps). Written to a
 /// temporary file and renamed: an existing file at `path` is replaced only by a complete one.
 ExportSummary ExportRobomimic(const Session& session, const std::string& path,
                               const ExportOptions& options = {});

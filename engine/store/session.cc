@@ -116,7 +116,10 @@ Session Session::Open(const std::string& dir, Access access) {
   session.access_ = access;
   if (access == Access::kReadWrite) session.RequireWritable();
   session.Scan();
-  if (access == Access::kReadWrite) session.RebuildIndex();
+  // A killed writer may have left the index behind the episode files: bring it up to date.
+  if (access == Access::kReadWrite && !SessionIndexIsCurrent(session, session.Path(kIndexName))) {
+    session.RebuildIndex();
+  }
   return session;
 }
 
@@ -370,7 +373,7 @@ void Session::DeleteEpisode(const std::string& name) {
                             [&](const EpisodeEntry& e) { return e.name == name; }),
              list.end());
   if (manifest_.episode_flags.erase(name) > 0) SaveManifestNow();
-  RebuildIndex();
+  IndexChanged();
 }
 
 void Session::MarkBad(const std::string& name, bool bad) {
@@ -379,7 +382,7 @@ void Session::MarkBad(const std::string& name, bool bad) {
   entry.flags.bad = bad;
   manifest_.episode_flags[name] = entry.flags;
   SaveManifestNow();
-  RebuildIndex();
+  IndexChanged();
 }
 
 void Session::SetSplit(const std::string& name, const std::string& split) {
@@ -393,7 +396,7 @@ void Session::SetSplit(const std::string& name, const std::string& split) {
   entry.flags.split = split;
   manifest_.episode_flags[name] = entry.flags;
   SaveManifestNow();
-  RebuildIndex();
+  IndexChanged();
 }
 
 void Session::SetNote(const std::string& name, const std::string& note) {
@@ -402,6 +405,18 @@ void Session::SetNote(const std::string& name, const std::string& note) {
   entry.flags.note = note;
   manifest_.episode_flags[name] = entry.flags;
   SaveManifestNow();
+}
+
+void Session::SetFlags(const std::string& name, const EpisodeFlags& flags) {
+  RequireWritable();
+  if (flags.split != "train" && flags.split != "valid") {
+    throw UserError("split must be 'train' or 'valid' (got '" + flags.split + "')");
+  }
+  EpisodeEntry& entry = FindMutable(name);
+  entry.flags = flags;
+  manifest_.episode_flags[name] = flags;
+  SaveManifestNow();
+  IndexChanged();
 }
 
 void Session::AssignSplits(double valid_fraction, uint64_t seed) {
@@ -425,7 +440,7 @@ void Session::AssignSplits(double valid_fraction, uint64_t seed) {
     manifest_.episode_flags[e.name] = e.flags;
   }
   SaveManifestNow();
-  RebuildIndex();
+  IndexChanged();
 }
 
 void Session::AttachCalibration(const std::string& calibration_path) {

@@ -99,6 +99,8 @@ class Session {
   /// Records the calibration file (copied into the session as calibration.json).
   void AttachCalibration(const std::string& calibration_path);
   void SetNote(const std::string& name, const std::string& note);
+  /// Sets all of an episode's flags at once (imports).
+  void SetFlags(const std::string& name, const EpisodeFlags& flags);
 
   const EpisodeEntry& Find(const std::string& name) const;
   DemoRecord ReadDemo(const std::string& name) const;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/store/atomic_file.h"
 #include "engine/store/h5.h"
@@ -33,10 +34,42 @@ std::string EnvArgsJson(const SessionManifest& m) {
   return args.dump();
 }
 
+namespace {
+
+/// FNV-1a over everything the index shows: env_args, and each listed episode's name, flags and
+/// size. Equal fingerprints mean an identical index.
+std::string IndexFingerprint(const Session& session) {
+  std::string text = EnvArgsJson(session.manifest());
+  for (const auto* list : {&session.demos(), &session.play_chunks()}) {
+    for (const EpisodeEntry& e : *list) {
+      text += "|" + e.name + ":" + std::to_string(e.meta.num_samples) + ":" + e.flags.split +
+              (e.flags.bad ? ":bad" : "") + (e.problem.empty() ? "" : ":damaged");
+    }
+  }
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ULL;
+  return std::to_string(hash);
+}
+
+}  // namespace
+
+bool SessionIndexIsCurrent(const Session& session, const std::string& path) {
+  if (!fs::exists(path)) return false;
+  try {
+    const h5::File file = h5::File::OpenReadOnly(path);
+    return h5::HasAttribute(file.id(), "recon_fingerprint") &&
+           h5::ReadStringAttribute(file, file.id(), "recon_fingerprint") ==
+               IndexFingerprint(session);
+  } catch (const UserError&) {
+    return false;  // unreadable: rebuild it
+  }
+}
+
 void WriteSessionIndex(const Session& session, const std::string& path) {
   // Derived from the episode files (and rebuilt on open), so it needs no fsync.
   WriteFileVia(path, Durability::kRename, [&](const std::string& tmp) {
     h5::File file = h5::File::Create(tmp);
+    h5::WriteAttribute(file, file.id(), "recon_fingerprint", IndexFingerprint(session));
     const h5::Handle data = h5::CreateGroup(file, file.id(), "data");
     int64_t total = 0;
     std::vector<std::string> train, valid;

@@ -23,4 +23,8 @@ std::string EnvArgsJson(const SessionManifest& manifest);
 /// h5dump and the HDF5 library follow them when the file is opened from anywhere.
 void WriteSessionIndex(const Session& session, const std::string& path);
 
+/// True when `path` is an index that WriteSessionIndex wrote for the session as it is now (it
+/// stores a fingerprint of what it lists), so opening a session need not rewrite it.
+bool SessionIndexIsCurrent(const Session& session, const std::string& path);
+
 }  // namespace recon::store

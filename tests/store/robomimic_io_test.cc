@@ -56,6 +56,7 @@ void MakeSession(const std::string& dir) {
   session.CommitPlay(SyntheticPlay(3, 5));
   session.MarkBad("demo_1", true);
   session.SetSplit("demo_2", "valid");
+  session.SetNote("demo_2", "the gripper slipped");
 }
 
 TEST(RobomimicTest, ExportHasRobomimicsLayoutAsHdf5ToolsSeeIt) {
@@ -125,6 +126,9 @@ TEST(RobomimicTest, ExportThenImportGivesBackTheSameSession) {
   EXPECT_EQ(copy.manifest().spec, original.manifest().spec);
   EXPECT_EQ(copy.manifest().beacons, original.manifest().beacons);
   EXPECT_EQ(copy.Find("demo_2").flags.split, "valid");
+  EXPECT_EQ(copy.Find("demo_2").flags.note, "the gripper slipped");
+  EXPECT_TRUE(copy.Find("demo_1").flags.bad);
+  EXPECT_FALSE(copy.Find("demo_0").flags.bad);
   const Dataset a = original.LoadDataset({Split::kAll, true, true});
   const Dataset b = copy.LoadDataset({Split::kAll, true, true});
   ASSERT_EQ(a.demos.size(), b.demos.size());
@@ -138,6 +142,30 @@ TEST(RobomimicTest, ExportThenImportGivesBackTheSameSession) {
   }
   EXPECT_EQ(Fingerprint(a), Fingerprint(b));
   EXPECT_EQ(copy.Find("demo_0").meta.seed, original.Find("demo_0").meta.seed);
+}
+
+TEST(RobomimicTest, ImportKeepsTheOrderOfManyPlayChunksAndRenumbersGaps) {
+  TempDir dir("many-chunks");
+  {
+    Session session = Session::Create(dir.Path("s"), SmallManifest());
+    for (int i = 0; i < 4; ++i) session.CommitDemo(SyntheticDemo(2, 100 + i));
+    for (int i = 0; i < 12; ++i) session.CommitPlay(SyntheticPlay(1, 200 + i));
+    session.DeleteEpisode("demo_1");  // the export has demo_0, demo_2, demo_3
+    ExportRobomimic(session, dir.Path("out.hdf5"));
+  }
+  ImportRobomimic(dir.Path("out.hdf5"), dir.Path("copy"));
+  const Session original = Session::Open(dir.Path("s"), Session::Access::kReadOnly);
+  const Session copy = Session::Open(dir.Path("copy"), Session::Access::kReadOnly);
+  ASSERT_EQ(copy.demos().size(), 3u);
+  EXPECT_EQ(copy.demos()[1].name, "demo_1");
+  EXPECT_EQ(copy.demos()[1].meta.seed, original.Find("demo_2").meta.seed);
+  const Dataset a = original.LoadDataset({Split::kAll, true, true});
+  const Dataset b = copy.LoadDataset({Split::kAll, true, true});
+  ASSERT_EQ(a.play.size(), 12u);
+  ASSERT_EQ(b.play.size(), 12u);
+  for (size_t i = 0; i < a.play.size(); ++i) EXPECT_EQ(a.play[i].b, b.play[i].b) << "chunk " << i;
+  EXPECT_THAT(ErrorOf([&] { ImportRobomimic(dir.Path("out.hdf5"), dir.Path("s")); }),
+              HasSubstr("already holds a teaching session"));
 }
 
 /// A robomimic file as robosuite's tools write it: float64 low-dim keys and actions, uint8

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -198,6 +200,32 @@ TEST(SessionTest, TheIndexIsARobomimicViewOfTheGoodEpisodes) {
   EXPECT_EQ(h5::Dimensions(index, index.id(), "data/demo_2/actions"), (std::vector<hsize_t>{5, 2}));
   EXPECT_EQ(h5::Dimensions(index, index.id(), "play/play_0/obs/beacon_red"),
             (std::vector<hsize_t>{2, 2}));
+}
+
+TEST(SessionTest, OpeningRewritesTheIndexOnlyWhenItIsStale) {
+  TempDir dir("stale-index");
+  {
+    Session session = Session::Create(dir.Path("s"), SmallManifest());
+    session.CommitDemo(SyntheticDemo(3, 1));
+    session.CommitDemo(SyntheticDemo(3, 2));
+  }
+  const auto written = fs::last_write_time(dir.Path("s/session.hdf5"));
+  const auto inode = [&] {
+    struct stat info;
+    stat(dir.Path("s/session.hdf5").c_str(), &info);
+    return info.st_ino;
+  };
+  const auto inode_before = inode();
+  { Session session = Session::Open(dir.Path("s")); }
+  EXPECT_EQ(inode(), inode_before);  // up to date: not replaced
+  EXPECT_EQ(fs::last_write_time(dir.Path("s/session.hdf5")), written);
+  // An episode committed by a writer killed before it rebuilt the index.
+  fs::copy_file(dir.Path("s/episodes/demo_1.h5"), dir.Path("s/episodes/demo_2.h5"));
+  { Session session = Session::Open(dir.Path("s")); }
+  EXPECT_NE(inode(), inode_before);
+  const h5::File index = h5::File::OpenReadOnly(dir.Path("s/session.hdf5"));
+  const h5::Handle data = h5::OpenGroup(index, index.id(), "data");
+  EXPECT_EQ(h5::ListChildren(index, data.id()).size(), 3u);
 }
 
 TEST(SessionTest, LeftoverTemporaryFilesOfAKilledWriterAreRemovedOnOpen) {
