@@ -163,9 +163,9 @@ void Session::RequireWritable() const {
   // cannot keep the result.
   try {
     EnsureWritableDirectory(dir_);
-  } catch (const UserError&) {
-    throw UserError("session folder " + dir_ + " is not writable (" + std::strerror(EACCES) +
-                    "?): check its permissions; nothing was changed");
+  } catch (const UserError& e) {
+    throw UserError("session folder " + dir_ + " is not writable (" + e.what() +
+                    "): check its permissions; nothing was changed");
   }
   const std::string lock_path = Path(kLockName);
   const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
