@@ -1,0 +1,22 @@
+#pragma once
+
+#include <vector>
+
+namespace recon::ui {
+
+/// Everything ImGui hears from the outside world in one frame. A window backend fills it from
+/// GLFW events; the headless test driver fills it from a script. Fixed time steps and pinned
+/// positions make frames reproducible, which the golden screenshots need.
+struct FrameInput {
+  static constexpr float kNoMouse = -1.0e30f;  ///< the pointer is outside the window
+  float mouse_x = kNoMouse;
+  float mouse_y = kNoMouse;
+  bool mouse_down[3] = {false, false, false};  ///< left, right, middle
+  float wheel = 0;
+  std::vector<unsigned> characters;  ///< typed text (Unicode code points)
+  std::vector<int> keys_pressed;     ///< ImGuiKey values pressed this frame (released next frame)
+  bool ctrl = false, shift = false, alt = false;
+  double delta_s = 1.0 / 60.0;
+};
+
+}  // namespace recon::ui
