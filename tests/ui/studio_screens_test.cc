@@ -1,0 +1,143 @@
+// The studio's screens, headless: a golden screenshot of every workflow step, and the commands
+// that clicking its controls sends. The snapshots come from workflow facts (studio_test_support.h),
+// so these tests need no cell, no session and no training.
+
+#include <gtest/gtest.h>
+
+#include <variant>
+
+#include "engine/core/error.h"
+#include "tests/support/golden_image.h"
+#include "tests/ui/studio_test_support.h"
+#include "ui/platform/headless_window.h"
+#include "ui/studio/studio_ui.h"
+#include "ui/testing/ui_driver.h"
+
+namespace recon::ui {
+namespace {
+
+using testing::Progress;
+using testing::SnapshotAt;
+
+constexpr int kWidth = 1280;
+constexpr int kHeight = 800;
+
+/// A headless studio window drawing whatever snapshot the test sets.
+class StudioHarness {
+ public:
+  StudioHarness()
+      : window_({kWidth, kHeight, 16.0f}),
+        driver_(window_, [this] { DrawStudio(snapshot_, commands_, textures_); }) {}
+
+  void Show(const StudioSnapshot& snapshot) {
+    snapshot_ = snapshot;
+    driver_.WaitFrames(3);  // tables and wrapped text settle over two frames
+  }
+  UiDriver& driver() { return driver_; }
+  std::vector<StudioCommand> Commands() { return commands_.Drain(); }
+
+ private:
+  // Declared so that the textures go before the window whose GL context owns them.
+  StudioSnapshot snapshot_;
+  CommandQueue commands_;
+  HeadlessWindow window_;
+  StudioTextures textures_;
+  UiDriver driver_;
+};
+
+std::string GoldenPath(const std::string& name) {
+  return std::string(RECON_SOURCE_DIR) + "/assets/goldens/studio_" + name + ".png";
+}
+
+struct ScreenCase {
+  const char* name;
+  Progress progress;
+  teach::Step step;
+};
+
+class StudioScreenTest : public ::testing::TestWithParam<ScreenCase> {};
+
+TEST_P(StudioScreenTest, MatchesItsGolden) {
+  const ScreenCase& c = GetParam();
+  StudioHarness harness;
+  harness.Show(SnapshotAt(c.progress, c.step));
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath(c.name)));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryStep, StudioScreenTest,
+    ::testing::Values(ScreenCase{"cell_empty", Progress::kNothing, teach::Step::kCell},
+                      ScreenCase{"cell", Progress::kCellUp, teach::Step::kCell},
+                      ScreenCase{"beacons", Progress::kCellUp, teach::Step::kBeacons},
+                      ScreenCase{"calibrate", Progress::kCalibrated, teach::Step::kCalibrate},
+                      ScreenCase{"record", Progress::kRecorded, teach::Step::kRecord},
+                      ScreenCase{"play", Progress::kRecorded, teach::Step::kPlay},
+                      ScreenCase{"train", Progress::kTrained, teach::Step::kTrain},
+                      ScreenCase{"rollouts", Progress::kDone, teach::Step::kRollouts},
+                      ScreenCase{"report", Progress::kDone, teach::Step::kReport}),
+    [](const ::testing::TestParamInfo<ScreenCase>& param) {
+      return std::string(param.param.name);
+    });
+
+TEST(StudioCommandTest, ClickingAStepOpensItAndABlockedStepDoesNothing) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kCellUp, teach::Step::kCell));
+  harness.driver().Click("Beacons##step");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<OpenStep>(commands[0]));
+  EXPECT_EQ(std::get<OpenStep>(commands[0]).step, teach::Step::kBeacons);
+  // Train is blocked until demonstrations exist: its row is disabled and sends nothing.
+  EXPECT_THROW(harness.driver().Click("Train##step"), UserError);
+  EXPECT_TRUE(harness.Commands().empty());
+}
+
+TEST(StudioCommandTest, ClickingTheObjectInTheCameraAssignsTheBeacon) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kCellUp, teach::Step::kBeacons));
+  harness.driver().Click("object:plate");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_FALSE(commands.empty());
+  ASSERT_TRUE(std::holds_alternative<AssignBeacon>(commands[0]));
+  EXPECT_EQ(std::get<AssignBeacon>(commands[0]).beacon, "plate");
+  EXPECT_EQ(std::get<AssignBeacon>(commands[0]).object, "plate");
+}
+
+TEST(StudioCommandTest, RecordScreenSendsRecordingAndEpisodeCommands) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("Start recording");
+  harness.driver().Click("Delete##demo_1");
+  harness.driver().Click("Good##demo_2");  // demo_2 is marked bad in the snapshot
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 3u);
+  EXPECT_TRUE(std::holds_alternative<StartRecording>(commands[0]));
+  ASSERT_TRUE(std::holds_alternative<DeleteEpisode>(commands[1]));
+  EXPECT_EQ(std::get<DeleteEpisode>(commands[1]).name, "demo_1");
+  ASSERT_TRUE(std::holds_alternative<MarkEpisodeBad>(commands[2]));
+  EXPECT_EQ(std::get<MarkEpisodeBad>(commands[2]).name, "demo_2");
+  EXPECT_FALSE(std::get<MarkEpisodeBad>(commands[2]).bad);
+}
+
+TEST(StudioCommandTest, AScriptDrivesTheStudioAndNamesItsMistakes) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kTrain));
+  harness.driver().RunScript("# train both\nwait 2\nclick Train Baseline and RECON\n");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<StartTraining>(commands[0]));
+  EXPECT_EQ(std::get<StartTraining>(commands[0]).methods,
+            (std::vector<std::string>{"baseline", "recon"}));
+  try {
+    harness.driver().RunScript("wait 1\nclick Trian\n", "demo.script");
+    FAIL() << "a misspelt label must be an error";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("demo.script:2: no widget labelled 'Trian'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(harness.driver().RunScript("jump 3\n"), UserError);
+}
+
+}  // namespace
+}  // namespace recon::ui

@@ -1,0 +1,54 @@
+#include <imgui.h>
+
+#include <cstdio>
+
+#include "ui/screens/screens.h"
+#include "ui/widgets/camera_view.h"
+#include "ui/widgets/widgets.h"
+
+namespace recon::ui {
+
+void DrawCellScreen(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  ScreenHeader("Cell", teach::StepPurpose(teach::Step::kCell));
+  ImGui::Text("Cell: %s%s", s.cell_kind.c_str(),
+              s.world.empty() ? "" : (", task " + s.world).c_str());
+  ImGui::Spacing();
+  if (ImGui::BeginTable("devices", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("Device");
+    ImGui::TableSetupColumn("Kind");
+    ImGui::TableSetupColumn("Status");
+    ImGui::TableSetupColumn("Rate");
+    ImGui::TableSetupColumn("Detail", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableHeadersRow();
+    for (const DeviceView& d : s.devices) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(d.role.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(d.kind.c_str());
+      ImGui::TableNextColumn();
+      if (!d.last_error.empty()) {
+        StatusText(Status::kError, "error");
+      } else {
+        StatusText(d.connected ? Status::kOk : Status::kOff,
+                   d.connected ? "connected" : "not connected");
+      }
+      ImGui::TableNextColumn();
+      if (d.rate_hz > 0) {
+        ImGui::Text("%.1f Hz", d.rate_hz);
+      } else {
+        ImGui::TextDisabled("-");
+      }
+      ImGui::TableNextColumn();
+      ImGui::TextWrapped("%s", d.last_error.empty() ? d.detail.c_str() : d.last_error.c_str());
+    }
+    ImGui::EndTable();
+  }
+  if (s.devices.empty()) ImGui::TextDisabled("No devices: open or create a session first.");
+  ImGui::Spacing();
+  context.textures.camera.Update(s.camera, s.camera_frame);
+  CameraView("camera##cell", context.textures.camera, 480.0f, s.beacons, {});
+}
+
+}  // namespace recon::ui

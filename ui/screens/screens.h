@@ -1,0 +1,39 @@
+#pragma once
+
+#include "ui/studio/studio_commands.h"
+#include "ui/studio/studio_snapshot.h"
+#include "ui/widgets/image_texture.h"
+
+namespace recon::ui {
+
+/// GL textures the screens draw with; owned by the UI thread for the window's life.
+struct StudioTextures {
+  ImageTexture camera;
+  ImageTexture rollout;
+};
+
+/// What every screen gets: the frame's snapshot (read only) and where to put requests.
+struct ScreenContext {
+  const StudioSnapshot& snapshot;
+  CommandQueue& commands;
+  StudioTextures& textures;
+};
+
+// One function per workflow step (one file each), and the step list down the side.
+void DrawSidebar(const ScreenContext& context);
+void DrawCellScreen(const ScreenContext& context);
+void DrawBeaconsScreen(const ScreenContext& context);
+void DrawCalibrateScreen(const ScreenContext& context);
+void DrawRecordScreen(const ScreenContext& context);
+void DrawPlayScreen(const ScreenContext& context);
+void DrawTrainScreen(const ScreenContext& context);
+void DrawRolloutsScreen(const ScreenContext& context);
+void DrawReportScreen(const ScreenContext& context);
+
+/// The status of `step` in the snapshot.
+const teach::StepStatus& StatusOf(const StudioSnapshot& snapshot, teach::Step step);
+/// A blocked step's reason, for disabled buttons' tooltips (empty when not blocked).
+std::string WhyBlocked(const StudioSnapshot& snapshot, teach::Step step);
+bool Blocked(const StudioSnapshot& snapshot, teach::Step step);
+
+}  // namespace recon::ui

@@ -1,0 +1,135 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/core/image.h"
+#include "engine/teach/workflow.h"
+
+namespace recon::ui {
+
+/// A device of the cell as the Cell screen shows it.
+struct DeviceView {
+  std::string role;    ///< "camera", "arm", "beacons", "teleop"
+  std::string kind;    ///< "simulated", "dwm1001", ...
+  std::string detail;  ///< port, model, resolution
+  bool connected = false;
+  double rate_hz = 0;      ///< updates per second lately (0: not streaming)
+  std::string last_error;  ///< empty when healthy
+};
+
+/// An object on the table a beacon can mark, with where the camera sees it.
+struct ObjectView {
+  std::string name;                ///< "plate", "bowl", "toast"
+  float pixel_x = 0, pixel_y = 0;  ///< in the camera image
+};
+
+/// A beacon as the Beacons screen shows it.
+struct BeaconView {
+  std::string name;    ///< "plate"
+  std::string object;  ///< the object it is assigned to; empty when not yet assigned
+  std::string quantity;
+  std::string unit;
+  std::vector<float> reading;  ///< the latest reading (empty before the first)
+  /// Where the reading projects into the camera image, for the overlay.
+  std::optional<std::array<float, 2>> pixel;
+  double rate_hz = 0;           ///< updates per second
+  double dropout_fraction = 0;  ///< missed updates over the last seconds
+  double noise_m = 0;           ///< spread of the readings while the beacon is still
+};
+
+/// A committed demonstration as the Record screen lists it.
+struct EpisodeView {
+  std::string name;
+  int samples = 0;
+  double seconds = 0;
+  bool succeeded = false;
+  bool bad = false;
+  std::string split;
+  std::string problem;  ///< non-empty for a damaged episode
+};
+
+/// Calibration as the Calibrate screen shows it.
+struct CalibrationView {
+  bool running = false;
+  int points_collected = 0;
+  int points_target = 12;
+  bool present = false;
+  bool passed = false;
+  double rmse_m = 0, p95_m = 0, threshold_m = 0.10;
+  std::vector<double> residual_m;  ///< per point
+  std::vector<bool> inlier;
+};
+
+/// One training run (a method) as the Train screen shows it.
+struct TrainingView {
+  std::string method;  ///< "baseline" or "recon"
+  std::string label;   ///< "Baseline", "RECON (Play)"
+  bool running = false;
+  bool done = false;
+  int step = 0, steps = 0;
+  double seconds = 0;
+  std::vector<float> loss_step, action_loss, beacon_loss, total_loss;
+  std::string error;
+};
+
+/// One method's rollouts as the Rollouts screen shows them.
+struct RolloutView {
+  std::string method;
+  std::string label;
+  std::string metric_name;
+  double metric_mean = 0, metric_sem = 0;
+  bool has_success = false;
+  double success_rate = 0;
+  int tests = 0;
+  int scenario = 0;  ///< which test scenario the playback shows
+  int frame = 0, frames = 0;
+  RgbImage frame_image;  ///< the playback's current frame
+};
+
+/// Everything the studio's screens draw, copied from the engine side once per frame under a
+/// short lock. The UI reads only this and answers with commands (studio_commands.h): it never
+/// touches a session, a device or a trainer.
+struct StudioSnapshot {
+  // Session and workflow.
+  bool session_open = false;
+  std::string session_dir;
+  std::string world;
+  std::vector<teach::StepStatus> steps;  ///< teach::EvaluateWorkflow of the facts
+  std::array<bool, teach::kNumSteps> can_open{};
+  teach::Step current_step = teach::Step::kCell;
+  teach::Step next_step = teach::Step::kCell;
+
+  // Cell.
+  std::string cell_kind = "simulated";
+  std::vector<DeviceView> devices;
+  RgbImage camera;  ///< the live camera frame (empty when none)
+  uint64_t camera_frame = 0;
+  std::vector<ObjectView> objects;
+  std::vector<BeaconView> beacons;
+
+  CalibrationView calibration;
+
+  // Recording.
+  bool recording = false;
+  int recording_samples = 0;
+  std::string teleop;  ///< "scripted teleop", "keyboard", "gamepad"
+  std::vector<EpisodeView> episodes;
+  double teacher_seconds = 0;  ///< demonstrations + play + beacon placements so far
+  int play_samples = 0;
+  bool recording_play = false;
+
+  std::vector<TrainingView> training;
+  std::vector<RolloutView> rollouts;
+  bool rollouts_running = false;
+
+  std::string report_path;  ///< empty until a report was written
+
+  std::string status;               ///< one line at the bottom: what is happening
+  std::vector<std::string> errors;  ///< shown until dismissed
+};
+
+}  // namespace recon::ui

@@ -1,0 +1,130 @@
+#include "ui/testing/ui_driver.h"
+
+#include <imgui.h>
+
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/report/image_png.h"
+#include "ui/widgets/widget_registry.h"
+
+namespace recon::ui {
+
+namespace {
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "'" : ", '") + n + "'";
+  return out.empty() ? "(none)" : out;
+}
+
+int KeyNamed(const std::string& name) {
+  if (name == "enter") return ImGuiKey_Enter;
+  if (name == "tab") return ImGuiKey_Tab;
+  if (name == "escape") return ImGuiKey_Escape;
+  if (name == "backspace") return ImGuiKey_Backspace;
+  if (name == "space") return ImGuiKey_Space;
+  if (name == "up") return ImGuiKey_UpArrow;
+  if (name == "down") return ImGuiKey_DownArrow;
+  return -1;
+}
+
+}  // namespace
+
+UiDriver::UiDriver(HeadlessWindow& window, std::function<void()> draw)
+    : window_(window), draw_(std::move(draw)) {}
+
+void UiDriver::Frame(const FrameInput& input) {
+  window_.Frame(input, [&] {
+    WidgetRegistry::ForThisThread().BeginFrame();
+    draw_();
+  });
+}
+
+void UiDriver::WaitFrames(int frames) {
+  FrameInput idle;
+  idle.mouse_x = mouse_x_;
+  idle.mouse_y = mouse_y_;
+  for (int i = 0; i < frames; ++i) Frame(idle);
+}
+
+void UiDriver::Hover(float x, float y, bool down) {
+  mouse_x_ = x;
+  mouse_y_ = y;
+  FrameInput input;
+  input.mouse_x = x;
+  input.mouse_y = y;
+  input.mouse_down[0] = down;
+  Frame(input);
+}
+
+void UiDriver::Click(const std::string& label) {
+  if (!Drawn(label)) Frame();  // the widget may appear only once the frame has been drawn
+  const std::optional<WidgetRect> rect = WidgetRegistry::ForThisThread().Find(label);
+  if (!rect) {
+    throw UserError("no widget labelled '" + label +
+                    "' on screen; drawn: " + Join(WidgetRegistry::ForThisThread().Labels()));
+  }
+  if (!rect->enabled) throw UserError("the widget '" + label + "' is disabled");
+  Hover(rect->CentreX(), rect->CentreY(), false);
+  Hover(rect->CentreX(), rect->CentreY(), true);
+  Hover(rect->CentreX(), rect->CentreY(), false);
+}
+
+void UiDriver::Type(const std::string& text) {
+  FrameInput input;
+  input.mouse_x = mouse_x_;
+  input.mouse_y = mouse_y_;
+  for (unsigned char c : text) input.characters.push_back(c);
+  Frame(input);
+}
+
+void UiDriver::Press(int imgui_key) {
+  FrameInput input;
+  input.mouse_x = mouse_x_;
+  input.mouse_y = mouse_y_;
+  input.keys_pressed.push_back(imgui_key);
+  Frame(input);
+  WaitFrames(1);  // released
+}
+
+bool UiDriver::Drawn(const std::string& label) const {
+  return WidgetRegistry::ForThisThread().Find(label).has_value();
+}
+
+void UiDriver::RunScript(const std::string& script, const std::string& source_name) {
+  std::istringstream lines(script);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] == '#') continue;
+    const size_t space = line.find(' ', start);
+    const std::string verb =
+        line.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    const std::string argument = space == std::string::npos ? "" : line.substr(space + 1);
+    const std::string where = source_name + ":" + std::to_string(number) + ": ";
+    try {
+      if (verb == "click") {
+        Click(argument);
+      } else if (verb == "type") {
+        Type(argument);
+      } else if (verb == "press") {
+        const int key = KeyNamed(argument);
+        if (key < 0) throw UserError("unknown key '" + argument + "'");
+        Press(key);
+      } else if (verb == "wait") {
+        WaitFrames(std::stoi(argument));
+      } else if (verb == "screenshot") {
+        report::WritePng(Screenshot(), argument);
+      } else {
+        throw UserError("unknown command '" + verb + "' (click, type, press, wait, screenshot)");
+      }
+    } catch (const UserError& e) {
+      throw UserError(where + e.what());
+    } catch (const std::invalid_argument&) {
+      throw UserError(where + "'" + argument + "' is not a number of frames");
+    }
+  }
+}
+
+}  // namespace recon::ui

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/core/image.h"
+#include "ui/platform/headless_window.h"
+
+namespace recon::ui {
+
+/// Plays a script of inputs into a headless studio, as a person at the keyboard and mouse would:
+/// click a widget by its label, type, press keys, wait. Each step runs real frames, so clicks go
+/// through ImGui's own hit testing. Used by the screenshot tests and by `recon-studio --script`.
+class UiDriver {
+ public:
+  /// `draw` issues the whole window's ImGui calls for one frame (it is called once per frame).
+  UiDriver(HeadlessWindow& window, std::function<void()> draw);
+
+  /// Runs one frame with `input`.
+  void Frame(const FrameInput& input = {});
+  void WaitFrames(int frames);
+  /// Moves the pointer to the widget labelled `label` and clicks it (hover, press, release).
+  /// Throws UserError if no such widget was drawn, naming the labels that were, or if it is
+  /// disabled.
+  void Click(const std::string& label);
+  /// Types text into the focused widget.
+  void Type(const std::string& text);
+  /// Presses and releases a key (an ImGuiKey value).
+  void Press(int imgui_key);
+  /// Whether a widget labelled `label` was drawn in the last frame.
+  bool Drawn(const std::string& label) const;
+  RgbImage Screenshot() { return window_.Screenshot(); }
+
+  /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
+  /// (enter, tab, escape, backspace, space, up, down), `wait <frames>`, `screenshot <file.png>`;
+  /// `#` starts a comment. UserError naming the line number for anything else.
+  void RunScript(const std::string& script, const std::string& source_name = "script");
+
+ private:
+  void Hover(float x, float y, bool down);
+
+  HeadlessWindow& window_;
+  std::function<void()> draw_;
+  float mouse_x_ = FrameInput::kNoMouse;
+  float mouse_y_ = FrameInput::kNoMouse;
+};
+
+}  // namespace recon::ui

@@ -1,0 +1,81 @@
+#include "ui/widgets/widgets.h"
+
+#include <imgui.h>
+
+#include <cstdarg>
+#include <cstdio>
+
+#include "ui/widgets/widget_registry.h"
+
+namespace recon::ui {
+
+namespace {
+
+ImU32 StatusColour(Status status) {
+  switch (status) {
+    case Status::kOk:
+      return IM_COL32(0, 158, 115, 255);  // Okabe-Ito green
+    case Status::kWarning:
+      return IM_COL32(230, 159, 0, 255);  // orange
+    case Status::kError:
+      return IM_COL32(213, 94, 0, 255);  // vermillion
+    case Status::kBusy:
+      return IM_COL32(0, 114, 178, 255);  // blue
+    case Status::kOff:
+      break;
+  }
+  return IM_COL32(150, 150, 150, 255);
+}
+
+}  // namespace
+
+bool Button(const char* label, bool enabled, const std::string& why_disabled) {
+  if (!enabled) ImGui::BeginDisabled();
+  const bool clicked = ImGui::Button(label);
+  WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  if (!enabled) {
+    ImGui::EndDisabled();
+    if (!why_disabled.empty() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+      ImGui::SetTooltip("%s", why_disabled.c_str());
+    }
+  }
+  return clicked && enabled;
+}
+
+bool Selectable(const char* label, bool selected, bool enabled) {
+  const bool clicked = ImGui::Selectable(
+      label, selected, enabled ? ImGuiSelectableFlags_None : ImGuiSelectableFlags_Disabled);
+  WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  return clicked && enabled;
+}
+
+void StatusText(Status status, const std::string& text) {
+  const float size = ImGui::GetTextLineHeight();
+  const ImVec2 at = ImGui::GetCursorScreenPos();
+  ImGui::GetWindowDrawList()->AddCircleFilled(ImVec2(at.x + size * 0.4f, at.y + size * 0.55f),
+                                              size * 0.3f, StatusColour(status));
+  ImGui::Dummy(ImVec2(size * 0.9f, size));
+  ImGui::SameLine();
+  ImGui::TextUnformatted(text.c_str());
+}
+
+std::string Format(const char* format, ...) {
+  char text[512];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(text, sizeof(text), format, args);
+  va_end(args);
+  return text;
+}
+
+void ScreenHeader(const std::string& title, const std::string& purpose) {
+  ImGui::SetWindowFontScale(1.35f);
+  ImGui::TextUnformatted(title.c_str());
+  ImGui::SetWindowFontScale(1.0f);
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", purpose.c_str());
+  ImGui::PopStyleColor();
+  ImGui::Separator();
+}
+
+}  // namespace recon::ui
