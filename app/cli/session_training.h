@@ -1,0 +1,55 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "engine/learn/learner.h"
+#include "engine/store/session.h"
+
+namespace recon::cli {
+
+/// How `recon train` and the studio train a method on a session (the world's recipe otherwise).
+struct SessionTrainingOptions {
+  int steps = 6001;
+  int batch = 20;
+  double learning_rate = 4e-4;
+  int feature_dim = 6;
+  uint64_t seed = 0;
+  std::string loss = "nll";
+  bool use_play = true;  ///< RECON trains its beacon net on the session's play data too
+  bool include_bad = false;
+};
+
+/// Where a training run is, reported every few steps.
+struct TrainingProgress {
+  std::string method;  ///< "baseline" or "recon"
+  std::string label;   ///< "Baseline", "RECON (Play)"
+  int step = 0;
+  int steps = 0;
+  learn::StepMetrics latest;  ///< losses averaged over the last window
+};
+
+/// Trains `method` ("baseline" or "recon") on the session's training split, then writes
+/// checkpoints/<method>.ckpt and training/<method>.json (recipe, seed, final losses, train and
+/// validation action MSE, loss curve) and returns that record. `on_progress` is called from the
+/// calling thread about 200 times. Stops when *cancel becomes true and throws UserError
+/// (nothing is written). UserError when the session has nothing to train on.
+nlohmann::json TrainSessionMethod(
+    const store::Session& session, const std::string& method, const SessionTrainingOptions& options,
+    const std::function<void(const TrainingProgress&)>& on_progress = {},
+    const std::atomic<bool>* cancel = nullptr);
+
+/// Rolls `method`'s checkpoint out on `tests` new scenes of the session's simulated cell with the
+/// beacons removed (scene i from Rng::Derive(seed, i)), writes rollouts/<method>.json and returns
+/// it. UserError without a checkpoint or a simulated world.
+nlohmann::json EvaluateSessionMethod(const store::Session& session, const std::string& method,
+                                     int tests, uint64_t seed);
+
+/// The seeds a session trains and tests with unless told otherwise (derived from its own).
+uint64_t DefaultTrainingSeed(const store::Session& session);
+uint64_t DefaultTestSeed(const store::Session& session);
+
+}  // namespace recon::cli
