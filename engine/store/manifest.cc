@@ -1,5 +1,6 @@
 #include "engine/store/manifest.h"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -146,7 +147,8 @@ std::string ManifestToJson(const SessionManifest& m) {
                      {"ledger",
                       {{"seconds_per_beacon_placement", m.seconds_per_beacon_placement},
                        {"placements_per_beacon", m.placements_per_beacon}}},
-                     {"episodes", flags}};
+                     {"episodes", flags},
+                     {"beacon_assignments", m.beacon_assignments}};
   return root.dump(2) + "\n";
 }
 
@@ -220,6 +222,15 @@ SessionManifest ManifestFromJson(const std::string& text, const std::string& sou
   m.seconds_per_beacon_placement = ledger.Number("seconds_per_beacon_placement");
   m.placements_per_beacon = static_cast<int>(ledger.NonNegativeInteger("placements_per_beacon"));
 
+  if (root.contains("beacon_assignments")) {  // optional: sessions from before the studio lack it
+    const FieldReader assignments = top.Object("beacon_assignments");
+    for (const auto& [beacon, object] : assignments.object().items()) {
+      const bool known = std::any_of(m.beacons.begin(), m.beacons.end(),
+                                     [&](const BeaconSpec& b) { return b.name == beacon; });
+      if (!known) assignments.Fail(assignments.Name(beacon), "names no beacon of this session");
+      m.beacon_assignments[beacon] = assignments.String(beacon);
+    }
+  }
   const FieldReader episodes = top.Object("episodes");
   for (const auto& [name, value] : episodes.object().items()) {
     const FieldReader f = episodes.Object(name);

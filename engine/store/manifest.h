@@ -62,6 +62,10 @@ struct SessionManifest {
   int placements_per_beacon = 2;
 
   std::map<std::string, EpisodeFlags> episode_flags;  ///< by episode name; absent = defaults
+  /// Which object the teacher says each beacon is stuck on (beacon name -> object name), set in
+  /// the studio's Beacons step. Absent for sessions recorded from the command line, whose
+  /// beacons are where the task puts them (BeaconSpec::object).
+  std::map<std::string, std::string> beacon_assignments;
 
   bool operator==(const SessionManifest& other) const = default;
 };

@@ -443,6 +443,15 @@ void Session::AssignSplits(double valid_fraction, uint64_t seed) {
   IndexChanged();
 }
 
+void Session::AssignBeacon(const std::string& beacon, const std::string& object) {
+  RequireWritable();
+  const bool known = std::any_of(manifest_.beacons.begin(), manifest_.beacons.end(),
+                                 [&](const BeaconSpec& b) { return b.name == beacon; });
+  if (!known) throw UserError("session " + dir_ + " has no beacon '" + beacon + "'");
+  manifest_.beacon_assignments[beacon] = object;
+  SaveManifestNow();
+}
+
 void Session::AttachCalibration(const std::string& calibration_path) {
   RequireWritable();
   calib::LoadCalibration(calibration_path);  // validates before anything is replaced

@@ -96,6 +96,8 @@ class Session {
   /// Assigns `valid_fraction` of the demonstrations (at least one if the fraction is positive
   /// and there are two or more) to validation, drawn with `seed`; the rest to training.
   void AssignSplits(double valid_fraction, uint64_t seed);
+  /// Records which object beacon `beacon` is stuck on. UserError for an unknown beacon.
+  void AssignBeacon(const std::string& beacon, const std::string& object);
   /// Records the calibration file (copied into the session as calibration.json).
   void AttachCalibration(const std::string& calibration_path);
   void SetNote(const std::string& name, const std::string& note);

@@ -34,6 +34,7 @@ TEST(ManifestTest, RoundTripsEveryField) {
   m.calibration_file = "calibration.json";
   m.beacon_noise_sigma = 0.02;
   m.episode_flags["demo_2"] = {true, "valid", "dropped the toast"};
+  m.beacon_assignments["red"] = "bowl";
   EXPECT_EQ(ManifestFromJson(ManifestToJson(m), "x"), m);
 }
 
@@ -56,6 +57,14 @@ TEST(ManifestTest, MissingAndMistypedFieldsAreNamed) {
   j = Valid();
   j["beacons"][0]["name"] = "Red Object";
   EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'beacons[0].name' must be lower-case"));
+}
+
+TEST(ManifestTest, AssignmentsAreOptionalButMustNameABeacon) {
+  json j = Valid();
+  j.erase("beacon_assignments");
+  EXPECT_TRUE(ManifestFromJson(j.dump(), "x").beacon_assignments.empty());
+  j["beacon_assignments"] = {{"green", "bowl"}};
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'beacon_assignments.green' names no beacon"));
 }
 
 TEST(ManifestTest, BeaconsMustAddUpToTheSpec) {

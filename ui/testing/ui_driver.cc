@@ -2,7 +2,10 @@
 
 #include <imgui.h>
 
+#include <chrono>
+#include <filesystem>
 #include <sstream>
+#include <thread>
 
 #include "engine/core/error.h"
 #include "engine/report/image_png.h"
@@ -69,6 +72,16 @@ void UiDriver::Click(const std::string& label) {
   Hover(rect->CentreX(), rect->CentreY(), false);
   Hover(rect->CentreX(), rect->CentreY(), true);
   Hover(rect->CentreX(), rect->CentreY(), false);
+  if (settled_) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!settled_()) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        throw UserError("clicking '" + label + "' was not taken in within 60 s");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    WaitFrames(2);  // draw what the application now shows
+  }
 }
 
 void UiDriver::Type(const std::string& text) {
@@ -86,6 +99,20 @@ void UiDriver::Press(int imgui_key) {
   input.keys_pressed.push_back(imgui_key);
   Frame(input);
   WaitFrames(1);  // released
+}
+
+void UiDriver::WaitIdle(double timeout_s) {
+  if (!idle_) throw UserError("wait-idle needs an idle check (none was set)");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  WaitFrames(2);
+  while (!idle_()) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw UserError("still busy after " + std::to_string(static_cast<int>(timeout_s)) + " s");
+    }
+    WaitFrames(1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  WaitFrames(3);  // let the screens show the finished state
 }
 
 bool UiDriver::Drawn(const std::string& label) const {
@@ -114,8 +141,14 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
         Press(key);
       } else if (verb == "wait") {
         WaitFrames(std::stoi(argument));
+      } else if (verb == "wait-idle") {
+        WaitIdle(argument.empty() ? 600.0 : std::stod(argument));
       } else if (verb == "screenshot") {
-        report::WritePng(Screenshot(), argument);
+        const std::filesystem::path path(argument);
+        report::WritePng(Screenshot(),
+                         path.is_absolute() || screenshot_dir_.empty()
+                             ? argument
+                             : (std::filesystem::path(screenshot_dir_) / path).string());
       } else {
         throw UserError("unknown command '" + verb + "' (click, type, press, wait, screenshot)");
       }

@@ -32,9 +32,21 @@ class UiDriver {
   bool Drawn(const std::string& label) const;
   RgbImage Screenshot() { return window_.Screenshot(); }
 
+  /// Whether the application has taken in every command the UI sent (e.g. the controller has
+  /// handled them and published a snapshot showing it). When set, Click waits for it, so the next
+  /// line of a script sees the click's effect.
+  void SetSettledCheck(std::function<bool()> settled) { settled_ = std::move(settled); }
+  /// What `wait-idle` waits for (e.g. "the studio's controller has nothing running").
+  void SetIdleCheck(std::function<bool()> idle) { idle_ = std::move(idle); }
+  /// Runs frames until the idle check holds; UserError after `timeout_s` seconds.
+  void WaitIdle(double timeout_s);
+  /// Where `screenshot` writes relative paths (default: the working directory).
+  void SetScreenshotDir(const std::string& dir) { screenshot_dir_ = dir; }
+
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
-  /// (enter, tab, escape, backspace, space, up, down), `wait <frames>`, `screenshot <file.png>`;
-  /// `#` starts a comment. UserError naming the line number for anything else.
+  /// (enter, tab, escape, backspace, space, up, down), `wait <frames>`, `wait-idle [seconds]`,
+  /// `screenshot <file.png>`; `#` starts a comment. UserError naming the line number for
+  /// anything else.
   void RunScript(const std::string& script, const std::string& source_name = "script");
 
  private:
@@ -44,6 +56,9 @@ class UiDriver {
   std::function<void()> draw_;
   float mouse_x_ = FrameInput::kNoMouse;
   float mouse_y_ = FrameInput::kNoMouse;
+  std::function<bool()> idle_;
+  std::function<bool()> settled_;
+  std::string screenshot_dir_;
 };
 
 }  // namespace recon::ui

@@ -1,0 +1,72 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "ui/studio/studio_commands.h"
+#include "ui/studio/studio_snapshot.h"
+
+namespace recon::studio {
+
+struct StudioOptions {
+  std::string session_dir;  ///< opened if it holds a session, created otherwise
+  std::string world = "tabletop";
+  int image_size = 64;  ///< the policy camera (new sessions)
+  uint64_t seed = 1;    ///< new sessions
+  /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
+  /// they run as fast as the simulation goes (tests, demos).
+  bool real_time = true;
+  int train_steps = 6001;
+  int rollout_tests = 10;
+  int calibration_points = 12;
+  int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)
+  int view_height = 240;
+};
+
+/// The engine side of the studio: owns the session, the simulated cell and the workers, applies
+/// the UI's commands and publishes snapshots. Two threads of its own: the cell thread (commands,
+/// live camera, recording ticks) and the job thread (calibration, training, rollouts, report:
+/// one at a time), so neither the window nor the camera freezes while a model trains. The UI
+/// thread only calls Push and Snapshot.
+class StudioController {
+ public:
+  /// Opens or creates the session; UserError naming what is wrong. The cell starts on its
+  /// thread at once.
+  explicit StudioController(const StudioOptions& options);
+  ~StudioController();
+  StudioController(const StudioController&) = delete;
+  StudioController& operator=(const StudioController&) = delete;
+
+  void Push(ui::StudioCommand command);
+  /// The latest published state (a copy; cheap enough at 30 frames per second).
+  ui::StudioSnapshot Snapshot() const;
+  /// No command waiting, no recording and no job running.
+  bool Idle() const;
+  /// Every command pushed so far has been handled and a snapshot showing it published.
+  bool Settled() const;
+
+ private:
+  class Cell;
+  class Jobs;
+
+  void RunCellThread();
+
+  StudioOptions options_;
+  ui::CommandQueue commands_;
+  mutable std::mutex snapshot_mutex_;
+  ui::StudioSnapshot snapshot_;
+  std::atomic<bool> stop_{false};
+  // Guarded by snapshot_mutex_, with snapshot_.
+  bool published_busy_ = false;
+  uint64_t pushed_ = 0;
+  uint64_t handled_ = 0;
+  std::unique_ptr<Cell> cell_;
+  std::thread cell_thread_;
+};
+
+}  // namespace recon::studio

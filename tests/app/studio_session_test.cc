@@ -1,0 +1,84 @@
+// A whole teaching session driven through the studio's GUI, headless: the real recon-studio
+// binary plays assets/studio/full_session.script (mark the plate, calibrate, record 4
+// demonstrations and play data, train both methods, roll out, write the report). The test then
+// checks the session on disk, not only pixels.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <set>
+
+#include "engine/calib/calibration.h"
+#include "engine/store/session.h"
+#include "tests/app/run_recon.h"
+#include "tests/support/golden_image.h"
+
+namespace recon {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
+  const fs::path dir = fs::temp_directory_path() / ("recon-studio-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const std::string session = (dir / "session").string();
+  const std::string screens = (dir / "screens").string();
+  const std::string command = std::string(RECON_STUDIO) + " --headless --fast --session " +
+                              session + " --train-steps 200 --rollout-tests 3 --script " +
+                              RECON_SOURCE_DIR + "/assets/studio/full_session.script" +
+                              " --screenshots " + screens + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, n);
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  // Errors the studio showed on screen are printed as lines starting "studio: ".
+  EXPECT_EQ(("\n" + output).find("\nstudio: "), std::string::npos) << "the studio showed errors:\n"
+                                                                   << output;
+
+  const store::Session s = store::Session::Open(session, store::Session::Access::kReadOnly);
+  const store::SessionManifest& m = s.manifest();
+  EXPECT_EQ(m.world, "tabletop");
+  ASSERT_EQ(m.beacon_assignments.count("plate"), 1u);  // clicked in the camera view
+  EXPECT_EQ(m.beacon_assignments.at("plate"), "plate");
+  ASSERT_FALSE(m.calibration_file.empty());
+  EXPECT_TRUE(calib::LoadCalibration((fs::path(session) / m.calibration_file).string()).passed);
+  ASSERT_EQ(s.demos().size(), 4u);
+  std::set<uint64_t> seeds;
+  for (const store::EpisodeEntry& e : s.demos()) {
+    EXPECT_TRUE(e.problem.empty()) << e.problem;
+    EXPECT_TRUE(e.meta.succeeded) << e.name;  // the scripted teacher finishes the task
+    seeds.insert(e.meta.seed);
+  }
+  EXPECT_EQ(seeds.size(), 4u) << "every demonstration is a new scene";
+  EXPECT_EQ(s.PlaySamples(), 30);
+  for (const char* method : {"baseline", "recon"}) {
+    EXPECT_TRUE(fs::exists(fs::path(session) / "checkpoints" / (std::string(method) + ".ckpt")));
+    EXPECT_TRUE(fs::exists(fs::path(session) / "training" / (std::string(method) + ".json")));
+    EXPECT_TRUE(fs::exists(fs::path(session) / "rollouts" / (std::string(method) + ".json")));
+  }
+  EXPECT_TRUE(fs::exists(fs::path(session) / "report" / "report.html"));
+
+  // A screenshot of every step, each a full window with content.
+  for (const char* name : {"01_cell", "02_beacons", "03_calibrate", "04_record", "05_play",
+                           "06_train", "07_rollouts", "08_report"}) {
+    const std::string path = screens + "/" + name + ".png";
+    ASSERT_TRUE(fs::exists(path)) << path;
+    const RgbImage image = testing::ReadPng(path);
+    EXPECT_EQ(image.width, 1280);
+    EXPECT_EQ(image.height, 800);
+    std::set<uint32_t> colours;
+    for (size_t i = 0; i + 2 < image.rgb.size(); i += 3 * 97) {
+      colours.insert((image.rgb[i] << 16) | (image.rgb[i + 1] << 8) | image.rgb[i + 2]);
+    }
+    EXPECT_GT(colours.size(), 20u) << path << " looks blank";
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace recon
