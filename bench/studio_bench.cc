@@ -1,0 +1,100 @@
+// The studio's frame time at 1280 x 800, headless, with the live camera view: idle, and while
+// both methods train on a recorded session (training must never slow the window below 30
+// frames per second). Each frame is what a display would get: snapshot, draw, render; the
+// read-back that only screenshots need is measured apart.
+
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "app/studio/studio_controller.h"
+#include "ui/platform/headless_window.h"
+#include "ui/studio/studio_ui.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using recon::studio::StudioController;
+
+/// A studio on a temporary tabletop session with 2 demonstrations, on the Record screen.
+class Studio {
+ public:
+  Studio() : dir_(fs::temp_directory_path() / ("recon-studio-bench-" + std::to_string(getpid()))) {
+    fs::remove_all(dir_);
+    recon::studio::StudioOptions options;
+    options.session_dir = dir_.string();
+    options.real_time = false;
+    controller_ = std::make_unique<StudioController>(options);
+    controller_->Push(recon::ui::AssignBeacon{"plate", "plate"});
+    controller_->Push(recon::ui::StartRecording{});
+    WaitIdle();
+    controller_->Push(recon::ui::StartRecording{});
+    WaitIdle();
+    controller_->Push(recon::ui::OpenStep{recon::teach::Step::kRecord});
+    WaitIdle();
+    window_ = std::make_unique<recon::ui::HeadlessWindow>(
+        recon::ui::UiRenderer::Options{1280, 800, 16.0f});
+  }
+  ~Studio() {
+    window_.reset();
+    controller_.reset();
+    fs::remove_all(dir_);
+  }
+  void WaitIdle() {
+    while (!controller_->Idle()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  void Frame() {
+    window_->Frame({}, [&] {
+      recon::ui::DrawStudio(controller_->Snapshot(), commands_, textures_);
+      for (auto& c : commands_.Drain()) controller_->Push(std::move(c));
+    });
+    glFinishLike();
+  }
+  recon::ui::HeadlessWindow& window() { return *window_; }
+  StudioController& controller() { return *controller_; }
+
+ private:
+  // The frame is done when its pixels exist; llvmpipe renders lazily, so wait for it as a
+  // swap would (one pixel read-back forces the frame to finish).
+  void glFinishLike() { benchmark::DoNotOptimize(window_->Screenshot().width); }
+
+  fs::path dir_;
+  std::unique_ptr<StudioController> controller_;
+  std::unique_ptr<recon::ui::HeadlessWindow> window_;
+  recon::ui::CommandQueue commands_;
+  recon::ui::StudioTextures textures_;
+};
+
+Studio& Shared() {
+  static Studio studio;
+  return studio;
+}
+
+void BM_StudioFrame1280x800(benchmark::State& state) {
+  Studio& studio = Shared();
+  for (int i = 0; i < 10; ++i) studio.Frame();  // first frames build the font atlas and tables
+  for (auto _ : state) studio.Frame();
+  state.counters["frames_per_second"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_StudioFrame1280x800)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+void BM_StudioFrameWhileTraining(benchmark::State& state) {
+  Studio& studio = Shared();
+  studio.controller().Push(recon::ui::OpenStep{recon::teach::Step::kTrain});
+  studio.controller().Push(recon::ui::StartTraining{{"baseline", "recon"}, 6001});
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // training is under way
+  for (auto _ : state) studio.Frame();
+  state.counters["frames_per_second"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  studio.controller().Push(recon::ui::CancelTraining{});
+  studio.WaitIdle();
+}
+BENCHMARK(BM_StudioFrameWhileTraining)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
