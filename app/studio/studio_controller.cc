@@ -111,6 +111,16 @@ class StudioController::Cell {
   /// Opens or creates the session and the world. Runs on the cell thread (GL contexts and
   /// MuJoCo data belong to the thread that made them).
   void Start() {
+    const std::string world =
+        store::Session::Exists(options_.session_dir)
+            ? store::LoadManifest((fs::path(options_.session_dir) / "session.json").string()).world
+            : options_.world;
+    // The steps (a camera to click objects in, a UWB frame to calibrate) are the arm cell's.
+    if (world != "tabletop") {
+      throw UserError("the studio teaches in the tabletop cell; a " + world +
+                      " session is recorded and trained from the command line (recon record, "
+                      "recon train)");
+    }
     if (store::Session::Exists(options_.session_dir)) {
       session_.emplace(store::Session::Open(options_.session_dir));
       world_ = cli::MakeSessionWorld(session_->manifest(), session_->manifest().placement);

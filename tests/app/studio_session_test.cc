@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <tuple>
+#include <utility>
 
 #include "engine/calib/calibration.h"
 #include "engine/store/session.h"
@@ -77,6 +80,41 @@ TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
     }
     EXPECT_GT(colours.size(), 20u) << path << " looks blank";
   }
+  fs::remove_all(dir);
+}
+
+/// Runs recon-studio with `args`; returns exit code and output.
+std::pair<int, std::string> RunStudio(const std::string& args) {
+  FILE* pipe = popen((std::string(RECON_STUDIO) + " " + args + " 2>&1").c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  size_t n;
+  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(StudioSessionTest, BadArgumentsAndScriptsAreClearErrors) {
+  const fs::path dir = fs::temp_directory_path() / ("recon-studio-bad-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  auto [code, output] = RunStudio("--headless --frames 1");
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(output.find("give the session folder"), std::string::npos) << output;
+  std::tie(code, output) =
+      RunStudio("--headless --frames 1 --world dynamic2d --session " + (dir / "s").string());
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(output.find("teaches in the tabletop cell"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(dir / "s"));
+  fs::create_directories(dir);
+  {
+    std::ofstream script(dir / "bad.script");
+    script << "wait 1\nclick Recrod##step\n";
+  }
+  std::tie(code, output) = RunStudio("--headless --session " + (dir / "t").string() + " --script " +
+                                     (dir / "bad.script").string());
+  EXPECT_EQ(code, 2);
+  EXPECT_NE(output.find("bad.script:2: no widget labelled 'Recrod##step'"), std::string::npos)
+      << output;
   fs::remove_all(dir);
 }
 
