@@ -3,6 +3,7 @@
 #include <mujoco/mujoco.h>
 
 #include <chrono>
+#include <condition_variable>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -33,52 +34,53 @@ using Clock = std::chrono::steady_clock;
 class StudioController::Jobs {
  public:
   struct State {
-    std::string name;  ///< "calibration", "training", "rollouts", "report"
+    std::string name;  ///< "calibration", "training", "rollouts"
     bool running = false;
     int calibration_points = 0;
     std::vector<ui::TrainingView> training;
     std::string error;
     std::function<void()> finish;  ///< run on the cell thread when the job is over
   };
+  using Work = std::function<std::function<void()>(Jobs&)>;
 
+  /// One thread for every job of the studio's life. It holds a renderer handle from start to
+  /// end, so the calibration and rollout worlds it makes share one EGL context that lives as
+  /// long as the thread: no context is made or dropped while other threads render (Mesa's
+  /// llvmpipe has crashed on that).
+  Jobs() {
+    thread_ = std::thread([this] {
+      const std::unique_ptr<worlds::SceneRenderer> keep = render::MujocoRendererFactory()();
+      Loop();
+    });
+  }
   ~Jobs() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      quit_ = true;
+    }
     cancel_ = true;
-    if (thread_.joinable()) thread_.join();
+    wake_.notify_all();
+    thread_.join();
   }
   /// Running, or finished but its result not yet applied on the cell thread (so the studio
   /// never looks idle between the two).
   bool Running() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return state_.running || state_.finish != nullptr;
+    return state_.running || state_.finish != nullptr || work_ != nullptr;
   }
-  /// Starts `work` (UserError if a job runs). `work` gets this object to report progress and
+  /// Queues `work` (UserError if a job runs). `work` gets this object to report progress and
   /// returns what to do on the cell thread afterwards.
-  void Start(const std::string& name, std::function<std::function<void()>(Jobs&)> work) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (state_.running) throw UserError("wait for the " + state_.name + " to finish");
+  void Start(const std::string& name, Work work) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (state_.running || work_ != nullptr) {
+      throw UserError("wait for the " + state_.name + " to finish");
     }
-    if (thread_.joinable()) thread_.join();
     cancel_ = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      state_ = {};
-      state_.name = name;
-      state_.running = true;
-    }
-    thread_ = std::thread([this, work = std::move(work)] {
-      std::function<void()> finish;
-      std::string error;
-      try {
-        finish = work(*this);
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-      std::lock_guard<std::mutex> lock(mutex_);
-      state_.running = false;
-      state_.error = error;
-      state_.finish = std::move(finish);
-    });
+    state_ = {};
+    state_.name = name;
+    state_.running = true;
+    work_ = std::move(work);
+    wake_.notify_all();
   }
   void Cancel() { cancel_ = true; }
   const std::atomic<bool>* cancel_flag() const { return &cancel_; }
@@ -97,8 +99,35 @@ class StudioController::Jobs {
   }
 
  private:
+  void Loop() {
+    while (true) {
+      Work work;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return quit_ || work_ != nullptr; });
+        if (quit_) return;
+        work = std::move(work_);
+        work_ = nullptr;
+      }
+      std::function<void()> finish;
+      std::string error;
+      try {
+        finish = work(*this);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      state_.running = false;
+      state_.error = error;
+      state_.finish = std::move(finish);
+    }
+  }
+
   mutable std::mutex mutex_;
+  std::condition_variable wake_;
   State state_;
+  Work work_;
+  bool quit_ = false;
   std::atomic<bool> cancel_{false};
   std::thread thread_;
 };
@@ -164,7 +193,11 @@ class StudioController::Cell {
   }
 
   bool Busy() const { return (recorder_ && recorder_->recording()) || jobs_.Running(); }
-  void AddError(const std::string& error) { errors_.push_back(error); }
+  /// Shown on screen until dismissed; the same error twice in a row is shown once.
+  void AddError(const std::string& error) {
+    if (errors_.empty() || errors_.back() != error) errors_.push_back(error);
+  }
+  const std::vector<std::string>& errors() const { return errors_; }
 
   void Publish(ui::StudioSnapshot& s) {
     const store::SessionManifest& m = session_->manifest();
@@ -547,11 +580,26 @@ void StudioController::RunCellThread() {
         cell_->AddError(e.what());  // shown on screen until dismissed
       }
     }
-    cell_->Tick();
+    try {
+      cell_->Tick();
+    } catch (const std::exception& e) {
+      cell_->AddError(e.what());
+    }
     const bool busy = cell_->Busy();
     if (Clock::now() >= next_publish || !commands.empty() || busy != published_busy_) {
       ui::StudioSnapshot fresh;
-      cell_->Publish(fresh);
+      try {
+        cell_->Publish(fresh);
+      } catch (const std::exception& e) {
+        // A file of the session went bad under us (deleted, edited): say so, keep running.
+        cell_->AddError(e.what());
+        std::lock_guard<std::mutex> lock(snapshot_mutex_);
+        snapshot_.errors = cell_->errors();
+        published_busy_ = busy;
+        handled_ += commands.size();
+        next_publish = Clock::now() + kFrame;
+        continue;
+      }
       // The snapshot, whether anything runs and how many commands it reflects change together,
       // so Idle() and Settled() never pair an old state with a new count.
       std::lock_guard<std::mutex> lock(snapshot_mutex_);

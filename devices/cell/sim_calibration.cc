@@ -59,7 +59,9 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   bowl_pos[1] = -0.5;
   mj_forward(m, d);
 
-  render::MujocoRenderer renderer;
+  // The calling thread's shared renderer (one EGL context per thread for its whole life), not a
+  // new one: making and dropping contexts while other threads render is what to avoid.
+  const std::unique_ptr<worlds::SceneRenderer> renderer = render::MujocoRendererFactory()();
   tags::TagDetector detector;
   const tags::PinholeCamera pinhole = tags::PinholeCamera::FromMujoco(
       m->cam_fovy[camera], options.camera_width, options.camera_height,
@@ -85,7 +87,7 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
     const Eigen::Vector3d truth = Vec(d->site_xpos + 3 * beacon_site);
 
     const RgbImage frame =
-        renderer.Render(scene, kCamera, options.camera_width, options.camera_height);
+        renderer->Render(scene, kCamera, options.camera_width, options.camera_height);
     const std::vector<tags::TagDetection> detections = detector.Detect(frame);
     const tags::TagDetection* found = nullptr;
     for (const auto& det : detections) {

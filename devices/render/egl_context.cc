@@ -5,6 +5,7 @@
 #include <GL/gl.h>
 
 #include <cstdio>
+#include <mutex>
 #include <string_view>
 #include <vector>
 
@@ -185,9 +186,18 @@ std::string GlString(GLenum name) {
   return text != nullptr ? text : "?";
 }
 
+// Contexts are made and destroyed one at a time in the whole process. Mesa's llvmpipe has crashed
+// (in swrast_dri.so) while threads made and dropped contexts side by side, and the studio has
+// several threads with contexts (window, cell camera, jobs).
+std::mutex& ContextLifetimeMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 }  // namespace
 
 EglContext::EglContext() {
+  std::lock_guard<std::mutex> lifetime(ContextLifetimeMutex());
   std::vector<std::string> attempts;
   const Display display = OpenDisplay(attempts);
   if (display.display == EGL_NO_DISPLAY) {
@@ -214,6 +224,7 @@ EglContext::EglContext() {
 }
 
 EglContext::~EglContext() {
+  std::lock_guard<std::mutex> lifetime(ContextLifetimeMutex());
   // A context current on this thread is only destroyed once released; release it so that no
   // dangling current context remains.
   const EGLenum api = eglQueryAPI();
