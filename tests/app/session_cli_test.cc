@@ -2,159 +2,11 @@
 // through the real `recon` binary as a teacher would: exit codes, JSON output and the files left
 // in the session folder.
 
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <array>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <map>
-#include <nlohmann/json.hpp>
-#include <regex>
-#include <set>
-#include <string>
-#include <vector>
-
-#include "tests/app/run_recon.h"
+#include "tests/app/session_cli_fixture.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-using json = nlohmann::json;
-using ::testing::HasSubstr;
-using ::testing::Not;
-
-using recon::testing::CommandResult;
-using recon::testing::RunRecon;
-
-// The unprivileged user the permission test runs `recon` as ("nobody").
-constexpr int kNobody = 65534;
-
-/// Runs a shell command line (stdout and stderr together), for h5ls/h5dump and setpriv.
-CommandResult RunShell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return {-1, "popen failed"};
-  std::string output;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-/// The JSON document a `--json` command printed (anything printed around it is ignored).
-json ParseJsonOutput(const CommandResult& result) {
-  const size_t begin = result.output.find_first_of("{[");
-  const size_t end = result.output.find_last_of("}]");
-  if (begin == std::string::npos || end == std::string::npos || end < begin) {
-    ADD_FAILURE() << "no JSON in the output:\n" << result.output;
-    return json::object();
-  }
-  try {
-    return json::parse(result.output.substr(begin, end - begin + 1));
-  } catch (const json::exception& e) {
-    ADD_FAILURE() << "unparsable JSON (" << e.what() << "):\n" << result.output;
-    return json::object();
-  }
-}
-
-std::string ReadBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
-
-void WriteJson(const fs::path& path, const json& value) {
-  std::ofstream(path) << value.dump(2) << "\n";
-}
-
-/// The bytes of a session's manifest and episode files, by path relative to the session.
-std::map<std::string, std::string> SnapshotSession(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  files["session.json"] = ReadBytes(dir / "session.json");
-  for (const char* folder : {"episodes", "play", "trash"}) {
-    if (!fs::is_directory(dir / folder)) continue;
-    for (const fs::directory_entry& entry : fs::directory_iterator(dir / folder)) {
-      files[fs::relative(entry.path(), dir).string()] = ReadBytes(entry.path());
-    }
-  }
-  return files;
-}
-
-/// Episode names of `session episodes --json`, demonstrations only.
-std::vector<std::string> DemoNames(const json& episodes) {
-  std::vector<std::string> names;
-  for (const json& e : episodes) {
-    if (e.value("kind", "") == "demo") names.push_back(e["name"].get<std::string>());
-  }
-  return names;
-}
-
-std::vector<std::string> ExpectedDemoNames(int count) {
-  std::vector<std::string> names;
-  for (int i = 0; i < count; ++i) names.push_back("demo_" + std::to_string(i));
-  return names;
-}
-
-const json* FindEpisode(const json& episodes, const std::string& name) {
-  for (const json& e : episodes) {
-    if (e.value("name", "") == name) return &e;
-  }
-  return nullptr;
-}
-
-/// Each test works in its own folder /tmp/session_cli_<test>_<pid> (mode 0755, so the
-/// unprivileged user of the permission test can reach it), removed at the end.
-class SessionCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-    root_ = fs::path("/tmp") / ("session_cli_" + test + "_" + std::to_string(getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-    fs::permissions(root_, fs::perms(0755));
-  }
-
-  void TearDown() override {
-    std::error_code ignored;
-    // A test may have made folders read-only; make them removable again.
-    for (auto it = fs::recursive_directory_iterator(root_, ignored);
-         it != fs::recursive_directory_iterator(); it.increment(ignored)) {
-      if (it->is_directory(ignored)) fs::permissions(it->path(), fs::perms(0755), ignored);
-    }
-    fs::remove_all(root_, ignored);
-  }
-
-  fs::path Path(const std::string& name) const { return root_ / name; }
-
-  static CommandResult Record(const fs::path& session, const std::string& args) {
-    return RunRecon("record --session " + session.string() + " " + args);
-  }
-
-  static json Info(const fs::path& session) {
-    const CommandResult r = RunRecon("session info " + session.string() + " --json");
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    return ParseJsonOutput(r);
-  }
-
-  static json Episodes(const fs::path& session) {
-    const CommandResult r = RunRecon("session episodes " + session.string() + " --json");
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    return ParseJsonOutput(r);
-  }
-
-  fs::path root_;
-};
+using namespace recon::session_cli_testing;  // NOLINT: the fixture and its helpers
 
 // 1. Recording creates the session; a second `record` appends to it.
 TEST_F(SessionCliTest, RecordThenAppendCountsEverything) {
@@ -359,7 +211,7 @@ TEST_F(SessionCliTest, ExportWritesRobomimicLayoutAndImportRestoresTheSession) {
   r = RunRecon("session export " + session.string() + " --out " + plain.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   ASSERT_TRUE(fs::exists(plain));
-  CommandResult ls = RunShell(std::string(H5LS) + " -r " + plain.string());
+  CommandResult ls = RunCommand(std::string(H5LS) + " -r " + plain.string());
   ASSERT_EQ(ls.exit_code, 0) << ls.output;
   for (const char* demo : {"demo_0", "demo_2", "demo_3"}) {
     const std::string group = std::string("/data/") + demo + "/";
@@ -372,7 +224,7 @@ TEST_F(SessionCliTest, ExportWritesRobomimicLayoutAndImportRestoresTheSession) {
   EXPECT_THAT(ls.output, HasSubstr("/mask/valid "));
   EXPECT_THAT(ls.output, HasSubstr("/play/"));
   const CommandResult masks =
-      RunShell(std::string(H5DUMP) + " -d /mask/valid -d /mask/train " + plain.string());
+      RunCommand(std::string(H5DUMP) + " -d /mask/valid -d /mask/train " + plain.string());
   ASSERT_EQ(masks.exit_code, 0) << masks.output;
   const size_t train_at = masks.output.find("/mask/train");
   ASSERT_NE(train_at, std::string::npos) << masks.output;
@@ -386,14 +238,14 @@ TEST_F(SessionCliTest, ExportWritesRobomimicLayoutAndImportRestoresTheSession) {
   const fs::path with_bad = Path("with_bad.hdf5");
   r = RunRecon("session export " + session.string() + " --include-bad --out " + with_bad.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  ls = RunShell(std::string(H5LS) + " -r " + with_bad.string());
+  ls = RunCommand(std::string(H5LS) + " -r " + with_bad.string());
   EXPECT_THAT(ls.output, HasSubstr("/data/demo_1/obs/"));
 
   const fs::path slim = Path("slim.hdf5");
   r = RunRecon("session export " + session.string() + " --no-play --no-next-obs --out " +
                slim.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  ls = RunShell(std::string(H5LS) + " -r " + slim.string());
+  ls = RunCommand(std::string(H5LS) + " -r " + slim.string());
   EXPECT_THAT(ls.output, HasSubstr("/data/demo_0/obs/"));
   EXPECT_THAT(ls.output, Not(HasSubstr("next_obs")));
   EXPECT_THAT(ls.output, Not(HasSubstr("/play")));
@@ -408,112 +260,6 @@ TEST_F(SessionCliTest, ExportWritesRobomimicLayoutAndImportRestoresTheSession) {
   }
   EXPECT_EQ(copy["episodes"], kDemos);
   EXPECT_EQ(copy["play"], kPlay);
-}
-
-// 7a, 7b. A broken manifest is named with its field.
-TEST_F(SessionCliTest, CorruptManifestIsNamedWithItsField) {
-  const fs::path session = Path("s");
-  const CommandResult r = Record(session, "--world dynamic2d --demos 1");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const json manifest = ReadJson(session / "session.json");
-  ASSERT_TRUE(manifest["cell"].contains("world")) << manifest.dump();
-
-  json missing = manifest;
-  missing["cell"].erase("world");
-  WriteJson(session / "session.json", missing);
-  CommandResult info = RunRecon("session info " + session.string() + " --json");
-  EXPECT_EQ(info.exit_code, 2) << info.output;
-  EXPECT_THAT(info.output, HasSubstr((session / "session.json").string()));
-  EXPECT_THAT(info.output, HasSubstr("cell.world"));
-
-  json newer = manifest;
-  newer["version"] = 99;
-  WriteJson(session / "session.json", newer);
-  info = RunRecon("session info " + session.string());
-  EXPECT_EQ(info.exit_code, 2) << info.output;
-  EXPECT_THAT(info.output, HasSubstr("session.json"));
-  EXPECT_THAT(info.output, HasSubstr("99"));
-  EXPECT_THAT(info.output, HasSubstr("newer"));
-}
-
-// 7c. A truncated episode is listed as damaged, stops training, and can be deleted.
-TEST_F(SessionCliTest, TruncatedEpisodeIsDamagedUntilDeleted) {
-  const fs::path session = Path("s");
-  constexpr int kDemos = 3;
-  CommandResult r =
-      Record(session, "--world dynamic2d --demos " + std::to_string(kDemos) + " --play 6");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const fs::path episode = session / "episodes" / "demo_1.h5";
-  ASSERT_TRUE(fs::exists(episode));
-  fs::resize_file(episode, fs::file_size(episode) / 2);
-
-  const json info = Info(session);
-  EXPECT_EQ(info["episodes"], kDemos - 1);
-  ASSERT_EQ(info["damaged"].size(), 1u) << info.dump();
-  EXPECT_EQ(info["damaged"][0]["name"], "demo_1");
-  EXPECT_THAT(info["damaged"][0].value("problem", ""), HasSubstr("demo_1.h5"));
-
-  r = RunRecon("train --session " + session.string() + " --steps 200");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr(episode.string()));
-  EXPECT_FALSE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
-
-  r = RunRecon("session delete-episode " + session.string() + " demo_1");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(fs::exists(session / "trash" / "demo_1.h5"));
-  r = RunRecon("train --session " + session.string() + " --steps 200");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_TRUE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
-  EXPECT_TRUE(fs::exists(session / "checkpoints" / "recon.ckpt"));
-  EXPECT_EQ(ReadJson(session / "training" / "baseline.json")["train_demos"], kDemos - 1);
-}
-
-// 7d. A file that is not HDF5 is refused before any session is made.
-TEST_F(SessionCliTest, ImportOfGarbageNamesTheFileAndCreatesNothing) {
-  const fs::path garbage = Path("garbage.hdf5");
-  std::ofstream(garbage) << "this is not an HDF5 file, just some text\n";
-  const fs::path session = Path("imported");
-  const CommandResult r =
-      RunRecon("session import " + garbage.string() + " --session " + session.string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr(garbage.string()));
-  EXPECT_FALSE(fs::exists(session));
-  for (const fs::directory_entry& entry : fs::directory_iterator(root_)) {
-    EXPECT_EQ(entry.path(), garbage) << "left behind: " << entry.path();
-  }
-}
-
-// 8. A session folder the user cannot write is refused before anything is recorded.
-TEST_F(SessionCliTest, UnwritableSessionFolderIsRefusedAndUnchanged) {
-  const fs::path session = Path("s");
-  constexpr int kDemos = 2;
-  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto files = SnapshotSession(session);
-
-  std::string as_user;  // prefix running recon as a user who cannot write the session
-  if (geteuid() == 0) {
-    if (RunShell("command -v setpriv").exit_code != 0) GTEST_SKIP() << "no setpriv";
-    as_user = "setpriv --reuid=" + std::to_string(kNobody) + " --regid=" + std::to_string(kNobody) +
-              " --clear-groups ";
-    struct stat st {};
-    ASSERT_EQ(stat(session.c_str(), &st), 0);
-    ASSERT_EQ(st.st_uid, 0u);
-    ASSERT_EQ(st.st_mode & 0777, 0755u);
-  } else {
-    fs::permissions(session, fs::perms(0555));
-  }
-
-  r = RunShell(as_user + RECON_CLI + " record --session " + session.string() + " --demos 1");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("session folder " + session.string() + " is not writable"));
-  // Reading still works.
-  r = RunShell(as_user + RECON_CLI + " session info " + session.string() + " --json");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(ParseJsonOutput(r)["episodes"], kDemos);
-
-  if (geteuid() != 0) fs::permissions(session, fs::perms(0755));
-  EXPECT_EQ(SnapshotSession(session), files);
 }
 
 // 9. Train, evaluate and report on a small session.
@@ -575,35 +321,6 @@ TEST_F(SessionCliTest, TrainEvalAndReport) {
     if (entry.path().extension() == ".png" && entry.file_size() > 0) ++pngs;
   }
   EXPECT_GT(pngs, 0);
-}
-
-// 10. Wrong arguments are usage errors.
-TEST_F(SessionCliTest, WrongArgumentsAreRefused) {
-  const fs::path fresh = Path("fresh");
-  CommandResult r = Record(fresh, "--world dynamic2d --demos -1");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("--demos"));
-  EXPECT_FALSE(fs::exists(fresh / "session.json"));
-
-  const fs::path session = Path("s");
-  r = Record(session, "--world dynamic2d --demos 1");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-
-  r = RunRecon("train --session " + session.string() + " --methods foo --steps 200");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("foo"));
-  EXPECT_THAT(r.output, HasSubstr("recon"));
-  EXPECT_THAT(r.output, HasSubstr("baseline"));
-  EXPECT_FALSE(fs::exists(session / "checkpoints"));
-
-  const std::string manifest = ReadBytes(session / "session.json");
-  r = RunRecon("session mark " + session.string() + " demo_0");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("--bad"));
-  r = RunRecon("session mark " + session.string() + " demo_0 --split sideways");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("sideways"));
-  EXPECT_EQ(ReadBytes(session / "session.json"), manifest);
 }
 
 // A simulated arm cell: calibrated on creation, or with a given calibration, or none.

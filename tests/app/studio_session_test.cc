@@ -9,36 +9,31 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <tuple>
-#include <utility>
 
 #include "engine/calib/calibration.h"
 #include "engine/store/session.h"
-#include "tests/app/run_recon.h"
 #include "tests/support/golden_image.h"
+#include "tests/support/run_command.h"
 
 namespace recon {
 namespace {
 
 namespace fs = std::filesystem;
 
+/// Runs recon-studio with `args`; returns exit code and output.
+testing::CommandResult RunStudio(const std::string& args) {
+  return testing::RunCommand(std::string(RECON_STUDIO) + " " + args);
+}
+
 TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
   const fs::path dir = fs::temp_directory_path() / ("recon-studio-" + std::to_string(getpid()));
   fs::remove_all(dir);
   const std::string session = (dir / "session").string();
   const std::string screens = (dir / "screens").string();
-  const std::string command = std::string(RECON_STUDIO) + " --headless --fast --session " +
-                              session + " --train-steps 200 --rollout-tests 3 --script " +
-                              RECON_SOURCE_DIR + "/assets/studio/full_session.script" +
-                              " --screenshots " + screens + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, n);
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  const auto [code, output] = RunStudio(
+      "--headless --fast --session " + session + " --train-steps 200 --rollout-tests 3 --script " +
+      RECON_SOURCE_DIR + "/assets/studio/full_session.script --screenshots " + screens);
+  ASSERT_EQ(code, 0) << output;
   // Errors the studio showed on screen are printed as lines starting "studio: ".
   EXPECT_EQ(("\n" + output).find("\nstudio: "), std::string::npos) << "the studio showed errors:\n"
                                                                    << output;
@@ -83,38 +78,26 @@ TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
   fs::remove_all(dir);
 }
 
-/// Runs recon-studio with `args`; returns exit code and output.
-std::pair<int, std::string> RunStudio(const std::string& args) {
-  FILE* pipe = popen((std::string(RECON_STUDIO) + " " + args + " 2>&1").c_str(), "r");
-  std::string output;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof(buffer), pipe)) > 0) output.append(buffer, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
 TEST(StudioSessionTest, BadArgumentsAndScriptsAreClearErrors) {
   const fs::path dir = fs::temp_directory_path() / ("recon-studio-bad-" + std::to_string(getpid()));
   fs::remove_all(dir);
-  auto [code, output] = RunStudio("--headless --frames 1");
-  EXPECT_EQ(code, 2);
-  EXPECT_NE(output.find("give the session folder"), std::string::npos) << output;
-  std::tie(code, output) =
-      RunStudio("--headless --frames 1 --world dynamic2d --session " + (dir / "s").string());
-  EXPECT_EQ(code, 2);
-  EXPECT_NE(output.find("teaches in the tabletop cell"), std::string::npos) << output;
+  testing::CommandResult r = RunStudio("--headless --frames 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("give the session folder"), std::string::npos) << r.output;
+  r = RunStudio("--headless --frames 1 --world dynamic2d --session " + (dir / "s").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("teaches in the tabletop cell"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "s"));
   fs::create_directories(dir);
   {
     std::ofstream script(dir / "bad.script");
     script << "wait 1\nclick Recrod##step\n";
   }
-  std::tie(code, output) = RunStudio("--headless --session " + (dir / "t").string() + " --script " +
-                                     (dir / "bad.script").string());
-  EXPECT_EQ(code, 2);
-  EXPECT_NE(output.find("bad.script:2: no widget labelled 'Recrod##step'"), std::string::npos)
-      << output;
+  r = RunStudio("--headless --session " + (dir / "t").string() + " --script " +
+                (dir / "bad.script").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("bad.script:2: no widget labelled 'Recrod##step'"), std::string::npos)
+      << r.output;
   fs::remove_all(dir);
 }
 

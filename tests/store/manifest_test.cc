@@ -15,12 +15,7 @@ using json = nlohmann::json;
 using ::testing::HasSubstr;
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    ManifestFromJson(text, "s/session.json");
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return testing::ErrorOf([&] { ManifestFromJson(text, "s/session.json"); });
 }
 
 json Valid() {

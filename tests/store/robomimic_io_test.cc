@@ -13,11 +13,13 @@
 #include "engine/core/error.h"
 #include "engine/store/h5.h"
 #include "tests/store/store_test_support.h"
+#include "tests/support/run_command.h"
 
 namespace recon::store {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ErrorOf;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using testing::SmallManifest;
@@ -27,23 +29,9 @@ using testing::TempDir;
 
 /// Output of an HDF5 command-line tool (what a user would run to look at the file).
 std::string Tool(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command << "\n" << out;
-  return out;
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  const recon::testing::CommandResult result = recon::testing::RunCommand(command);
+  EXPECT_EQ(result.exit_code, 0) << command << "\n" << result.output;
+  return result.output;
 }
 
 /// demo_0 (3 samples), demo_1 (4, bad), demo_2 (5, valid) and two play chunks.

@@ -16,6 +16,7 @@ namespace recon::store {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ErrorOf;
 using ::testing::HasSubstr;
 using testing::SmallManifest;
 using testing::SyntheticDemo;
@@ -30,15 +31,6 @@ void ExpectSameEpisode(const Episode& a, const Episode& b) {
     EXPECT_EQ(a.samples[i].b, b.samples[i].b) << "sample " << i;
     EXPECT_EQ(a.samples[i].u, b.samples[i].u) << "sample " << i;
   }
-}
-
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 TEST(SessionTest, CommittedEpisodesReadBackExactlyInBothEncodings) {

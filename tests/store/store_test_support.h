@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
+#include "engine/core/error.h"
 #include "engine/core/rng.h"
 #include "engine/store/episode_file.h"
 #include "engine/store/manifest.h"
@@ -33,6 +35,16 @@ class TempDir {
  private:
   std::filesystem::path path_;
 };
+
+/// The message of the UserError `f` throws, or "(no error)".
+inline std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 /// x 2, y 3x4x5 image, beacons "red" (2) and "dist" (1), u 2.
 inline SessionManifest SmallManifest(const std::string& y_encoding = "uint8") {

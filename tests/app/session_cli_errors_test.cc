@@ -1,0 +1,146 @@
+// Bad input to the teaching-session commands, through the real `recon` binary: corrupt manifests
+// and episodes, garbage files, an unwritable folder and wrong arguments give exit code 2 with a
+// message naming the file and field, and change nothing already saved.
+
+#include "tests/app/session_cli_fixture.h"
+
+namespace {
+
+using namespace recon::session_cli_testing;  // NOLINT: the fixture and its helpers
+
+// 7a, 7b. A broken manifest is named with its field.
+TEST_F(SessionCliTest, CorruptManifestIsNamedWithItsField) {
+  const fs::path session = Path("s");
+  const CommandResult r = Record(session, "--world dynamic2d --demos 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json manifest = ReadJson(session / "session.json");
+  ASSERT_TRUE(manifest["cell"].contains("world")) << manifest.dump();
+
+  json missing = manifest;
+  missing["cell"].erase("world");
+  WriteJson(session / "session.json", missing);
+  CommandResult info = RunRecon("session info " + session.string() + " --json");
+  EXPECT_EQ(info.exit_code, 2) << info.output;
+  EXPECT_THAT(info.output, HasSubstr((session / "session.json").string()));
+  EXPECT_THAT(info.output, HasSubstr("cell.world"));
+
+  json newer = manifest;
+  newer["version"] = 99;
+  WriteJson(session / "session.json", newer);
+  info = RunRecon("session info " + session.string());
+  EXPECT_EQ(info.exit_code, 2) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("session.json"));
+  EXPECT_THAT(info.output, HasSubstr("99"));
+  EXPECT_THAT(info.output, HasSubstr("newer"));
+}
+
+// 7c. A truncated episode is listed as damaged, stops training, and can be deleted.
+TEST_F(SessionCliTest, TruncatedEpisodeIsDamagedUntilDeleted) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 3;
+  CommandResult r =
+      Record(session, "--world dynamic2d --demos " + std::to_string(kDemos) + " --play 6");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path episode = session / "episodes" / "demo_1.h5";
+  ASSERT_TRUE(fs::exists(episode));
+  fs::resize_file(episode, fs::file_size(episode) / 2);
+
+  const json info = Info(session);
+  EXPECT_EQ(info["episodes"], kDemos - 1);
+  ASSERT_EQ(info["damaged"].size(), 1u) << info.dump();
+  EXPECT_EQ(info["damaged"][0]["name"], "demo_1");
+  EXPECT_THAT(info["damaged"][0].value("problem", ""), HasSubstr("demo_1.h5"));
+
+  r = RunRecon("train --session " + session.string() + " --steps 200");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(episode.string()));
+  EXPECT_FALSE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
+
+  r = RunRecon("session delete-episode " + session.string() + " demo_1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(session / "trash" / "demo_1.h5"));
+  r = RunRecon("train --session " + session.string() + " --steps 200");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
+  EXPECT_TRUE(fs::exists(session / "checkpoints" / "recon.ckpt"));
+  EXPECT_EQ(ReadJson(session / "training" / "baseline.json")["train_demos"], kDemos - 1);
+}
+
+// 7d. A file that is not HDF5 is refused before any session is made.
+TEST_F(SessionCliTest, ImportOfGarbageNamesTheFileAndCreatesNothing) {
+  const fs::path garbage = Path("garbage.hdf5");
+  std::ofstream(garbage) << "this is not an HDF5 file, just some text\n";
+  const fs::path session = Path("imported");
+  const CommandResult r =
+      RunRecon("session import " + garbage.string() + " --session " + session.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(garbage.string()));
+  EXPECT_FALSE(fs::exists(session));
+  for (const fs::directory_entry& entry : fs::directory_iterator(root_)) {
+    EXPECT_EQ(entry.path(), garbage) << "left behind: " << entry.path();
+  }
+}
+
+// 8. A session folder the user cannot write is refused before anything is recorded.
+TEST_F(SessionCliTest, UnwritableSessionFolderIsRefusedAndUnchanged) {
+  const fs::path session = Path("s");
+  constexpr int kDemos = 2;
+  CommandResult r = Record(session, "--world dynamic2d --demos " + std::to_string(kDemos));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto files = SnapshotSession(session);
+
+  std::string as_user;  // prefix running recon as a user who cannot write the session
+  if (geteuid() == 0) {
+    if (RunCommand("command -v setpriv").exit_code != 0) GTEST_SKIP() << "no setpriv";
+    as_user = "setpriv --reuid=" + std::to_string(kNobody) + " --regid=" + std::to_string(kNobody) +
+              " --clear-groups ";
+    struct stat st {};
+    ASSERT_EQ(stat(session.c_str(), &st), 0);
+    ASSERT_EQ(st.st_uid, 0u);
+    ASSERT_EQ(st.st_mode & 0777, 0755u);
+  } else {
+    fs::permissions(session, fs::perms(0555));
+  }
+
+  r = RunCommand(as_user + RECON_CLI + " record --session " + session.string() + " --demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("session folder " + session.string() + " is not writable"));
+  // Reading still works.
+  r = RunCommand(as_user + RECON_CLI + " session info " + session.string() + " --json");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(ParseJsonOutput(r)["episodes"], kDemos);
+
+  if (geteuid() != 0) fs::permissions(session, fs::perms(0755));
+  EXPECT_EQ(SnapshotSession(session), files);
+}
+
+// 10. Wrong arguments are usage errors.
+TEST_F(SessionCliTest, WrongArgumentsAreRefused) {
+  const fs::path fresh = Path("fresh");
+  CommandResult r = Record(fresh, "--world dynamic2d --demos -1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--demos"));
+  EXPECT_FALSE(fs::exists(fresh / "session.json"));
+
+  const fs::path session = Path("s");
+  r = Record(session, "--world dynamic2d --demos 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  r = RunRecon("train --session " + session.string() + " --methods foo --steps 200");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("foo"));
+  EXPECT_THAT(r.output, HasSubstr("recon"));
+  EXPECT_THAT(r.output, HasSubstr("baseline"));
+  EXPECT_FALSE(fs::exists(session / "checkpoints"));
+
+  const std::string manifest = ReadBytes(session / "session.json");
+  r = RunRecon("session mark " + session.string() + " demo_0");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--bad"));
+  r = RunRecon("session mark " + session.string() + " demo_0 --split sideways");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("sideways"));
+  EXPECT_EQ(ReadBytes(session / "session.json"), manifest);
+}
+
+}  // namespace
