@@ -5,17 +5,13 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <mutex>
 #include <sstream>
-#include <thread>
 #include <tuple>
 
 #include "engine/calib/calibration.h"
@@ -458,102 +454,6 @@ void Session::AttachCalibration(const std::string& calibration_path) {
   WriteFileAtomically(Path("calibration.json"), ReadText(calibration_path));
   manifest_.calibration_file = "calibration.json";
   SaveManifestNow();
-}
-
-DemoRecord Session::ReadDemo(const std::string& name) const {
-  const EpisodeEntry& e = Find(name);
-  if (!e.problem.empty()) throw UserError(e.problem);
-  return ReadDemoFile(e.path, manifest_);
-}
-
-PlayRecord Session::ReadPlay(const std::string& name) const {
-  const EpisodeEntry& e = Find(name);
-  if (!e.problem.empty()) throw UserError(e.problem);
-  return ReadPlayFile(e.path, manifest_);
-}
-
-namespace {
-
-/// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first error. Loading
-/// is dominated by the kernel handing the process fresh pages for every sample's vectors (about
-/// 180,000 page faults for 100 camera episodes), which parallelises; HDF5 serialises its own
-/// calls internally.
-void ParallelFor(size_t count, unsigned threads, const std::function<void(size_t)>& job) {
-  threads = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(count)));
-  if (threads <= 1) {
-    for (size_t i = 0; i < count; ++i) job(i);
-    return;
-  }
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  std::vector<std::thread> workers;
-  for (unsigned t = 0; t < threads; ++t) {
-    workers.emplace_back([&] {
-      for (size_t i = next++; i < count; i = next++) {
-        try {
-          job(i);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(error_mutex);
-          if (!error) error = std::current_exception();
-          next = count;
-        }
-      }
-    });
-  }
-  for (std::thread& worker : workers) worker.join();
-  if (error) std::rethrow_exception(error);
-}
-
-}  // namespace
-
-Dataset Session::LoadDataset(const DatasetOptions& options) const {
-  Dataset dataset;
-  dataset.spec = manifest_.spec;
-  std::vector<const EpisodeEntry*> demos;
-  for (const EpisodeEntry& e : demos_) {
-    if (e.flags.bad && !options.include_bad) continue;
-    if (options.split == Split::kTrain && e.flags.split != "train") continue;
-    if (options.split == Split::kValid && e.flags.split != "valid") continue;
-    if (!e.problem.empty()) {
-      throw UserError(e.problem + " (delete the episode with `recon session delete-episode " +
-                      dir_ + " " + e.name + "`, or mark it bad, to train on the others)");
-    }
-    demos.push_back(&e);
-  }
-  std::vector<const EpisodeEntry*> chunks;
-  if (options.include_play) {
-    for (const EpisodeEntry& e : play_) {
-      if (!e.problem.empty()) throw UserError(e.problem);
-      chunks.push_back(&e);
-    }
-  }
-  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  dataset.demos.resize(demos.size());
-  ParallelFor(demos.size(), threads, [&](size_t i) {
-    dataset.demos[i] = ReadDemoFile(demos[i]->path, manifest_).episode;
-  });
-  std::vector<std::vector<PlaySample>> play(chunks.size());
-  ParallelFor(chunks.size(), threads,
-              [&](size_t i) { play[i] = ReadPlayFile(chunks[i]->path, manifest_).samples; });
-  for (std::vector<PlaySample>& chunk : play) {
-    for (PlaySample& sample : chunk) dataset.play.push_back(std::move(sample));
-  }
-  return dataset;
-}
-
-double Session::DemoSeconds(bool include_bad) const {
-  double total = 0;
-  for (const EpisodeEntry& e : demos_) {
-    if (include_bad || !e.flags.bad) total += e.meta.teaching_seconds;
-  }
-  return total;
-}
-
-double Session::PlaySeconds() const {
-  double total = 0;
-  for (const EpisodeEntry& e : play_) total += e.meta.teaching_seconds;
-  return total;
 }
 
 }  // namespace recon::store
