@@ -1,16 +1,14 @@
 // recon: the command-line face of RECON Studio. Wiring only; the work is in engine/.
 
 #include <CLI/CLI.hpp>
-#include <cstdio>
-#include <exception>
 
 #include "app/cli/cell_commands.h"
 #include "app/cli/experiment_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/report_command.h"
+#include "app/cli/run_main.h"
 #include "app/cli/session_command.h"
 #include "app/cli/train_commands.h"
-#include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
 
 int main(int argc, char** argv) {
@@ -28,18 +26,5 @@ int main(int argc, char** argv) {
   recon::cli::AddTrainCommands(app, global);
   recon::cli::AddSessionCommands(app);
   recon::cli::AddReportCommand(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    // CLI11 uses 0 for --help/--version; every real parse error is a usage error (2).
-    return code == 0 ? 0 : 2;
-  } catch (const recon::UserError& e) {
-    std::fprintf(stderr, "\nrecon: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "\nrecon: internal error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return recon::cli::RunMain(app, argc, argv, "recon");
 }

@@ -4,11 +4,11 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
 #include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
@@ -109,18 +109,5 @@ int main(int argc, char** argv) {
   app.add_option("--frames", flags.frames, "frames to run without a script")->capture_default_str();
   app.add_option("--width", flags.width, "window width")->capture_default_str();
   app.add_option("--height", flags.height, "window height")->capture_default_str();
-  try {
-    app.parse(argc, argv);
-    Run(flags);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  } catch (const recon::UserError& e) {
-    std::fprintf(stderr, "\nrecon-studio: error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "\nrecon-studio: internal error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return recon::cli::RunMain(app, argc, argv, "recon-studio", [&] { Run(flags); });
 }

@@ -1,20 +1,19 @@
 #include "app/studio/studio_controller.h"
 
-#include <mujoco/mujoco.h>
-
 #include <chrono>
-#include <condition_variable>
 #include <filesystem>
 #include <functional>
 #include <future>
+#include <optional>
 
 #include "app/cli/session_report_builder.h"
 #include "app/cli/session_summary.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
-#include "devices/cell/sim_calibration.h"
+#include "app/studio/cell_view.h"
+#include "app/studio/job_thread.h"
+#include "app/studio/studio_jobs.h"
 #include "devices/render/mujoco_renderer.h"
-#include "devices/tags/pinhole_camera.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
@@ -27,110 +26,6 @@ namespace recon::studio {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-/// A long activity on the job thread. The cell thread starts it, polls `state` for the snapshot
-/// and, once it is done, applies its result to the session (only the cell thread changes the
-/// session).
-class StudioController::Jobs {
- public:
-  struct State {
-    std::string name;  ///< "calibration", "training", "rollouts"
-    bool running = false;
-    int calibration_points = 0;
-    std::vector<ui::TrainingView> training;
-    std::string error;
-    std::function<void()> finish;  ///< run on the cell thread when the job is over
-  };
-  using Work = std::function<std::function<void()>(Jobs&)>;
-
-  /// One thread for every job of the studio's life. It holds a renderer handle from start to
-  /// end, so the calibration and rollout worlds it makes share one EGL context that lives as
-  /// long as the thread: no context is made or dropped while other threads render (Mesa's
-  /// llvmpipe has crashed on that).
-  Jobs() {
-    thread_ = std::thread([this] {
-      const std::unique_ptr<worlds::SceneRenderer> keep = render::MujocoRendererFactory()();
-      Loop();
-    });
-  }
-  ~Jobs() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      quit_ = true;
-    }
-    cancel_ = true;
-    wake_.notify_all();
-    thread_.join();
-  }
-  /// Running, or finished but its result not yet applied on the cell thread (so the studio
-  /// never looks idle between the two).
-  bool Running() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return state_.running || state_.finish != nullptr || work_ != nullptr;
-  }
-  /// Queues `work` (UserError if a job runs). `work` gets this object to report progress and
-  /// returns what to do on the cell thread afterwards.
-  void Start(const std::string& name, Work work) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (state_.running || work_ != nullptr) {
-      throw UserError("wait for the " + state_.name + " to finish");
-    }
-    cancel_ = false;
-    state_ = {};
-    state_.name = name;
-    state_.running = true;
-    work_ = std::move(work);
-    wake_.notify_all();
-  }
-  void Cancel() { cancel_ = true; }
-  const std::atomic<bool>* cancel_flag() const { return &cancel_; }
-  template <typename Change>
-  void Update(const Change& update) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    update(state_);
-  }
-  /// A copy of the state; takes the finish action (and error) once the job is over.
-  State Take() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    State copy = state_;
-    state_.finish = nullptr;
-    state_.error.clear();
-    return copy;
-  }
-
- private:
-  void Loop() {
-    while (true) {
-      Work work;
-      {
-        std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return quit_ || work_ != nullptr; });
-        if (quit_) return;
-        work = std::move(work_);
-        work_ = nullptr;
-      }
-      std::function<void()> finish;
-      std::string error;
-      try {
-        finish = work(*this);
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-      std::lock_guard<std::mutex> lock(mutex_);
-      state_.running = false;
-      state_.error = error;
-      state_.finish = std::move(finish);
-    }
-  }
-
-  mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  State state_;
-  Work work_;
-  bool quit_ = false;
-  std::atomic<bool> cancel_{false};
-  std::thread thread_;
-};
 
 /// Everything the cell thread owns: the session, the simulated world, its camera, the recorder.
 class StudioController::Cell {
@@ -175,6 +70,7 @@ class StudioController::Cell {
   }
 
   void Handle(const ui::StudioCommand& command) {
+    Changed();  // whatever it does (or fails to do), the workflow is re-read
     std::visit([this](const auto& c) { Apply(c); }, command);
   }
 
@@ -187,9 +83,7 @@ class StudioController::Cell {
         if (!recorder_->recording()) Commit();
       }
     }
-    const Jobs::State job = jobs_.Take();
-    if (job.finish) job.finish();
-    if (!job.error.empty()) errors_.push_back(job.error);
+    ApplyFinishedJob();
   }
 
   bool Busy() const { return (recorder_ && recorder_->recording()) || jobs_.Running(); }
@@ -199,8 +93,44 @@ class StudioController::Cell {
   }
   const std::vector<std::string>& errors() const { return errors_; }
 
+  /// The snapshot: the session's side (rebuilt only after something changed it, see dirty_),
+  /// then what moves by itself: the camera, the recording, the job's progress.
   void Publish(ui::StudioSnapshot& s) {
+    if (dirty_) {
+      RebuildSessionView();
+      dirty_ = false;
+    }
+    s = session_view_;
+    s.current_step = current_step_;
+    RenderView(s);
+    const JobState job = jobs_.Peek();
+    s.calibration.running = job.running && job.name == "calibration";
+    s.calibration.points_collected = job.calibration_points;
+    s.recording = recorder_ && recorder_->recording();
+    s.recording_samples = recorder_ ? recorder_->samples() : 0;
+    s.training = job.name == "training" ? job.training : last_training_;
+    s.rollouts_running = job.running && job.name == "rollouts";
+    s.report_path = report_path_;
+    s.errors = errors_;
+    s.status = job.running ? "Running " + job.name + "..." : status_;
+  }
+
+ private:
+  /// Marks the session's side of the snapshot stale: after every command, commit and job.
+  void Changed() { dirty_ = true; }
+
+  void ApplyFinishedJob() {
+    const JobState job = jobs_.Take();
+    if (job.finish) job.finish();
+    if (!job.error.empty()) AddError(job.error);
+    if (job.finish || !job.error.empty()) Changed();
+  }
+
+  /// Everything the snapshot shows of the session and the workflow. Reads the calibration and
+  /// the rollout files, so it runs when something changed, not at the camera's 30 Hz.
+  void RebuildSessionView() {
     const store::SessionManifest& m = session_->manifest();
+    ui::StudioSnapshot& s = session_view_;
     s = {};
     s.session_open = true;
     s.session_dir = session_->dir();
@@ -209,32 +139,26 @@ class StudioController::Cell {
     for (const store::DeviceEntry& d : m.devices) {
       s.devices.push_back({d.role, d.kind, d.detail, true, d.role == "camera" ? 30.0 : 10.0, ""});
     }
-    const teach::WorkflowFacts facts = Facts();
+    std::optional<calib::CalibrationReport> calibration;
+    if (!m.calibration_file.empty()) {
+      calibration =
+          calib::LoadCalibration((fs::path(session_->dir()) / m.calibration_file).string());
+    }
+    const teach::WorkflowFacts facts = Facts(calibration);
     s.steps = teach::EvaluateWorkflow(facts);
     for (int i = 0; i < teach::kNumSteps; ++i) {
       s.can_open[i] = teach::CanOpen(facts, teach::kAllSteps[i]);
     }
-    s.current_step = current_step_;
     s.next_step = teach::NextStep(facts);
-    RenderView(s);
-    const Jobs::State job = jobs_.Take();
-    if (job.finish) job.finish();  // (the cell thread is the only caller)
-    if (!job.error.empty()) errors_.push_back(job.error);
-    s.calibration = CalibrationView();
-    s.calibration.running = job.running && job.name == "calibration";
-    s.calibration.points_collected = job.calibration_points;
+    s.calibration = CalibrationView(calibration);
     s.calibration.points_target = options_.calibration_points;
-    s.recording = recorder_ && recorder_->recording();
-    s.recording_samples = recorder_ ? recorder_->samples() : 0;
     s.teleop = "scripted teleop (the simulated teacher)";
     for (const store::EpisodeEntry& e : session_->demos()) {
       s.episodes.push_back({e.name, static_cast<int>(e.meta.num_samples), e.meta.teaching_seconds,
                             e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
     }
     s.play_samples = static_cast<int>(session_->PlaySamples());
-    const nlohmann::json ledger = cli::TeachingLedgerJson(*session_);
-    s.teacher_seconds = ledger["recon_play_total_s"].get<double>();
-    s.training = job.name == "training" ? job.training : last_training_;
+    s.teacher_seconds = cli::TeachingLedgerJson(*session_)["recon_play_total_s"].get<double>();
     for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
       const auto r = cli::ReadJsonFile(
           (fs::path(session_->dir()) / "rollouts" / (std::string(method) + ".json")).string());
@@ -250,14 +174,9 @@ class StudioController::Cell {
       view.tests = r->value("tests", 0);
       s.rollouts.push_back(view);
     }
-    s.rollouts_running = job.running && job.name == "rollouts";
-    s.report_path = report_path_;
-    s.errors = errors_;
-    s.status = job.running ? "Running " + job.name + "..." : status_;
   }
 
- private:
-  teach::WorkflowFacts Facts() const {
+  teach::WorkflowFacts Facts(const std::optional<calib::CalibrationReport>& calibration) const {
     const store::SessionManifest& m = session_->manifest();
     teach::WorkflowFacts f;
     f.session_open = true;
@@ -267,12 +186,10 @@ class StudioController::Cell {
     for (const BeaconSpec& b : m.beacons) {
       if (!m.beacon_assignments.count(b.name)) f.unmarked_objects.push_back(b.object);
     }
-    if (!m.calibration_file.empty()) {
+    if (calibration) {
       f.calibration_present = true;
-      const calib::CalibrationReport cal =
-          calib::LoadCalibration((fs::path(session_->dir()) / m.calibration_file).string());
-      f.calibration_passed = cal.passed;
-      f.calibration_rmse_m = cal.rmse_m;
+      f.calibration_passed = calibration->passed;
+      f.calibration_rmse_m = calibration->rmse_m;
     }
     for (const store::EpisodeEntry& e : session_->demos()) {
       if (e.flags.bad || !e.problem.empty()) continue;
@@ -281,7 +198,7 @@ class StudioController::Cell {
     }
     f.play_samples = static_cast<int>(session_->PlaySamples());
     f.recording_demos = recorder_ && recorder_->recording();
-    f.training = jobs_.Running();
+    f.training = jobs_.RunningName() == "training";
     for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
       const fs::path dir(session_->dir());
       if (fs::exists(dir / "checkpoints" / (std::string(method) + ".ckpt"))) {
@@ -295,19 +212,17 @@ class StudioController::Cell {
     return f;
   }
 
-  ui::CalibrationView CalibrationView() const {
+  static ui::CalibrationView CalibrationView(
+      const std::optional<calib::CalibrationReport>& calibration) {
     ui::CalibrationView view;
-    const store::SessionManifest& m = session_->manifest();
-    if (m.calibration_file.empty()) return view;
-    const calib::CalibrationReport cal =
-        calib::LoadCalibration((fs::path(session_->dir()) / m.calibration_file).string());
+    if (!calibration) return view;
     view.present = true;
-    view.passed = cal.passed;
-    view.rmse_m = cal.rmse_m;
-    view.p95_m = cal.p95_m;
-    view.threshold_m = cal.options.pass_rmse_m;
-    view.residual_m = cal.residual_norm_m;
-    for (bool outlier : cal.outlier) view.inlier.push_back(!outlier);
+    view.passed = calibration->passed;
+    view.rmse_m = calibration->rmse_m;
+    view.p95_m = calibration->p95_m;
+    view.threshold_m = calibration->options.pass_rmse_m;
+    view.residual_m = calibration->residual_norm_m;
+    for (bool outlier : calibration->outlier) view.inlier.push_back(!outlier);
     return view;
   }
 
@@ -315,48 +230,13 @@ class StudioController::Cell {
   void RenderView(ui::StudioSnapshot& s) {
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) return;  // the other worlds have no camera
-    worlds::MujocoModel& scene = tabletop->scene();
-    s.camera = view_->Render(scene, "top", options_.view_width, options_.view_height);
+    ShowTabletopView(*tabletop, *view_, options_.view_width, options_.view_height,
+                     session_->manifest(), world_->BeaconReading(), s);
     s.camera_frame = ++camera_frames_;
-    const int id = mj_name2id(scene.model(), mjOBJ_CAMERA, "top");
-    const double* pos = scene.data()->cam_xpos + 3 * id;
-    const double* mat = scene.data()->cam_xmat + 9 * id;
-    Eigen::Matrix3d rotation;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) rotation(r, c) = mat[3 * r + c];
-    }
-    const tags::PinholeCamera camera = tags::PinholeCamera::FromMujoco(
-        scene.model()->cam_fovy[id], options_.view_width, options_.view_height,
-        Eigen::Vector3d(pos[0], pos[1], pos[2]), rotation);
-    const auto pixel = [&](const Eigen::Vector3d& p) {
-      const Eigen::Vector2d px = camera.Project(p);
-      return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
-    };
-    const auto object = [&](const std::string& name, const Eigen::Vector3d& p) {
-      const std::array<float, 2> px = pixel(p);
-      s.objects.push_back({name, px[0], px[1]});
-    };
-    object("plate", tabletop->PlatePosition());
-    object("bowl", tabletop->BowlPosition());
-    object("toast", tabletop->ToastPosition());
-    const store::SessionManifest& m = session_->manifest();
-    const std::vector<float> reading = world_->BeaconReading();
-    for (const BeaconSpec& b : m.beacons) {
-      ui::BeaconView view;
-      view.name = b.name;
-      auto it = m.beacon_assignments.find(b.name);
-      view.object = it == m.beacon_assignments.end() ? "" : it->second;
-      view.quantity = b.quantity;
-      view.unit = b.unit;
-      view.reading = reading;
-      view.pixel = pixel(tabletop->BeaconPosition());
-      view.rate_hz = 1.0 / world_->StepSeconds();
-      view.noise_m = m.beacon_noise_sigma;
-      s.beacons.push_back(view);
-    }
   }
 
   void Commit() {
+    Changed();
     const store::EpisodeEntry& e = session_->CommitDemo(recorder_->Take(), replace_);
     status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) + " samples).";
     replace_.reset();
@@ -380,16 +260,9 @@ class StudioController::Cell {
     const uint64_t seed = session_->manifest().seed;
     const int points = options_.calibration_points;
     const std::string dir = session_->dir();
-    jobs_.Start("calibration", [this, seed, points, dir](Jobs& jobs) -> std::function<void()> {
-      cell::SimCalibrationOptions calibration;
-      calibration.seed = seed;
-      calibration.points = points;
-      const cell::SimCalibrationResult result =
-          cell::RunSimulatedCalibration(calibration, [&](int done, int) {
-            jobs.Update([&](Jobs::State& state) { state.calibration_points = done; });
-          });
+    jobs_.Start("calibration", [this, seed, points, dir](JobThread& jobs) -> std::function<void()> {
       const std::string path = (fs::path(dir) / "calibration.new.json").string();
-      calib::SaveCalibration(result.report, path);
+      CalibrateCell(jobs, seed, points, path);
       return [this, path] {
         session_->AttachCalibration(path);
         fs::remove(path);
@@ -448,44 +321,9 @@ class StudioController::Cell {
     training.steps = c.steps > 0 ? std::min(c.steps, options_.train_steps) : options_.train_steps;
     training.seed = cli::DefaultTrainingSeed(*session_);
     const std::vector<std::string> methods = c.methods;
-    jobs_.Start("training", [this, training, methods](Jobs& jobs) -> std::function<void()> {
-      jobs.Update([&](Jobs::State& state) {
-        for (const std::string& method : methods) {
-          ui::TrainingView view;
-          view.method = method;
-          view.label = method == teach::kBaselineMethod ? "Baseline" : "RECON";
-          view.steps = training.steps;
-          state.training.push_back(view);
-        }
-      });
-      for (size_t i = 0; i < methods.size(); ++i) {
-        const auto start = Clock::now();
-        cli::TrainSessionMethod(
-            *session_, methods[i], training,
-            [&](const cli::TrainingProgress& p) {
-              jobs.Update([&](Jobs::State& state) {
-                ui::TrainingView& view = state.training[i];
-                view.label = p.label;
-                view.running = true;
-                view.step = p.step;
-                view.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-                view.loss_step.push_back(static_cast<float>(p.step));
-                view.action_loss.push_back(p.latest.action_loss);
-                if (methods[i] == teach::kReconMethod) {
-                  view.beacon_loss.push_back(p.latest.beacon_loss);
-                }
-                view.total_loss.push_back(p.latest.total_loss);
-              });
-            },
-            jobs.cancel_flag());
-        jobs.Update([&](Jobs::State& state) {
-          state.training[i].running = false;
-          state.training[i].done = true;
-        });
-      }
-      std::vector<ui::TrainingView> finished;
-      jobs.Update([&](Jobs::State& state) { finished = state.training; });
-      return [this, finished] {
+    jobs_.Start("training", [this, training, methods](JobThread& jobs) -> std::function<void()> {
+      std::vector<ui::TrainingView> finished = TrainMethods(jobs, *session_, training, methods);
+      return [this, finished = std::move(finished)] {
         last_training_ = finished;
         status_ = "Trained.";
       };
@@ -495,13 +333,8 @@ class StudioController::Cell {
   void Apply(const ui::RunRollouts& c) {
     RequireIdle("roll out");
     const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
-    jobs_.Start("rollouts", [this, tests](Jobs&) -> std::function<void()> {
-      for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-        if (fs::exists(fs::path(session_->dir()) / "checkpoints" /
-                       (std::string(method) + ".ckpt"))) {
-          cli::EvaluateSessionMethod(*session_, method, tests, cli::DefaultTestSeed(*session_));
-        }
-      }
+    jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
+      RollOutTrainedMethods(*session_, tests);
       return [this] { status_ = "Rollouts done."; };
     });
   }
@@ -520,7 +353,9 @@ class StudioController::Cell {
   std::unique_ptr<teach::DemoRecorder> recorder_;
   std::optional<std::string> replace_;
   Clock::time_point next_tick_ = Clock::now();
-  Jobs jobs_;
+  JobThread jobs_;
+  ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
+  bool dirty_ = true;
   std::vector<ui::TrainingView> last_training_;
   teach::Step current_step_ = teach::Step::kCell;
   std::vector<std::string> errors_;

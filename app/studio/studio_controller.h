@@ -52,7 +52,6 @@ class StudioController {
 
  private:
   class Cell;
-  class Jobs;
 
   void RunCellThread();
 

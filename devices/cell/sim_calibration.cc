@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "devices/cell/scene_camera.h"
 #include "devices/render/mujoco_renderer.h"
 #include "devices/sim/hidden_uwb_frame.h"
 #include "devices/tags/pinhole_camera.h"
@@ -52,7 +53,6 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   const int plate = mj_name2id(m, mjOBJ_BODY, "plate");
   const int bowl = mj_name2id(m, mjOBJ_BODY, "bowl");
   const int beacon_site = mj_name2id(m, mjOBJ_SITE, "beacon");
-  const int camera = mj_name2id(m, mjOBJ_CAMERA, kCamera);
   // Keep the bowl out of the way: calibration is done on a clear table.
   mjtNum* bowl_pos = d->mocap_pos + 3 * m->body_mocapid[bowl];
   bowl_pos[0] = 0.1;
@@ -63,10 +63,8 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   // new one: making and dropping contexts while other threads render is what to avoid.
   const std::unique_ptr<worlds::SceneRenderer> renderer = render::MujocoRendererFactory()();
   tags::TagDetector detector;
-  const tags::PinholeCamera pinhole = tags::PinholeCamera::FromMujoco(
-      m->cam_fovy[camera], options.camera_width, options.camera_height,
-      Vec(d->cam_xpos + 3 * camera),
-      Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>>(d->cam_xmat + 9 * camera));
+  const tags::PinholeCamera pinhole =
+      SceneCamera(scene, kCamera, options.camera_width, options.camera_height);
   tags::TableLocator locator(pinhole, tags::TagSpec{0.048, 0.0});
   const double beacon_height = d->site_xpos[3 * beacon_site + 2];
   locator.SetTagSpec(kBeaconTagId, tags::TagSpec{kBeaconTagSize_m, beacon_height});

@@ -1,0 +1,29 @@
+#include "app/cli/run_main.h"
+
+#include <cstdio>
+#include <exception>
+
+#include "engine/core/error.h"
+
+namespace recon::cli {
+
+int RunMain(CLI::App& app, int argc, char** argv, const char* program,
+            const std::function<void()>& run) {
+  try {
+    app.parse(argc, argv);
+    if (run) run();
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    // CLI11 uses 0 for --help/--version; every real parse error is a usage error (2).
+    return code == 0 ? 0 : 2;
+  } catch (const UserError& e) {
+    std::fprintf(stderr, "\n%s: error: %s\n", program, e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "\n%s: internal error: %s\n", program, e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,92 @@
+#include "app/studio/job_thread.h"
+
+#include <memory>
+
+#include "devices/render/mujoco_renderer.h"
+#include "engine/core/error.h"
+
+namespace recon::studio {
+
+JobThread::JobThread() {
+  thread_ = std::thread([this] {
+    const std::unique_ptr<worlds::SceneRenderer> keep = render::MujocoRendererFactory()();
+    Loop();
+  });
+}
+
+JobThread::~JobThread() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  cancel_ = true;
+  wake_.notify_all();
+  thread_.join();
+}
+
+bool JobThread::Running() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return state_.running || state_.finish != nullptr || work_ != nullptr;
+}
+
+std::string JobThread::RunningName() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return state_.running || work_ != nullptr ? state_.name : "";
+}
+
+void JobThread::Start(const std::string& name, Work work) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (state_.running || work_ != nullptr) {
+    throw UserError("wait for the " + state_.name + " to finish");
+  }
+  cancel_ = false;
+  state_ = {};
+  state_.name = name;
+  state_.running = true;
+  work_ = std::move(work);
+  wake_.notify_all();
+}
+
+void JobThread::Update(const std::function<void(JobState&)>& change) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  change(state_);
+}
+
+JobState JobThread::Peek() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return state_;
+}
+
+JobState JobThread::Take() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  JobState copy = state_;
+  state_.finish = nullptr;
+  state_.error.clear();
+  return copy;
+}
+
+void JobThread::Loop() {
+  while (true) {
+    Work work;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return quit_ || work_ != nullptr; });
+      if (quit_) return;
+      work = std::move(work_);
+      work_ = nullptr;
+    }
+    std::function<void()> finish;
+    std::string error;
+    try {
+      finish = work(*this);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    state_.running = false;
+    state_.error = error;
+    state_.finish = std::move(finish);
+  }
+}
+
+}  // namespace recon::studio

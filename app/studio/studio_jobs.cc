@@ -1,0 +1,72 @@
+#include "app/studio/studio_jobs.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include "devices/cell/sim_calibration.h"
+#include "engine/calib/calibration.h"
+#include "engine/teach/workflow.h"
+
+namespace recon::studio {
+
+namespace fs = std::filesystem;
+
+void CalibrateCell(JobThread& jobs, uint64_t seed, int points, const std::string& path) {
+  cell::SimCalibrationOptions calibration;
+  calibration.seed = seed;
+  calibration.points = points;
+  const cell::SimCalibrationResult result =
+      cell::RunSimulatedCalibration(calibration, [&](int done, int) {
+        jobs.Update([&](JobState& state) { state.calibration_points = done; });
+      });
+  calib::SaveCalibration(result.report, path);
+}
+
+std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session& session,
+                                           const cli::SessionTrainingOptions& options,
+                                           const std::vector<std::string>& methods) {
+  jobs.Update([&](JobState& state) {
+    for (const std::string& method : methods) {
+      ui::TrainingView view;
+      view.method = method;
+      view.label = method == teach::kBaselineMethod ? "Baseline" : "RECON";
+      view.steps = options.steps;
+      state.training.push_back(view);
+    }
+  });
+  for (size_t i = 0; i < methods.size(); ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    cli::TrainSessionMethod(
+        session, methods[i], options,
+        [&](const cli::TrainingProgress& p) {
+          jobs.Update([&](JobState& state) {
+            ui::TrainingView& view = state.training[i];
+            view.label = p.label;
+            view.running = true;
+            view.step = p.step;
+            view.seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            view.loss_step.push_back(static_cast<float>(p.step));
+            view.action_loss.push_back(p.latest.action_loss);
+            if (methods[i] == teach::kReconMethod) view.beacon_loss.push_back(p.latest.beacon_loss);
+            view.total_loss.push_back(p.latest.total_loss);
+          });
+        },
+        jobs.cancel_flag());
+    jobs.Update([&](JobState& state) {
+      state.training[i].running = false;
+      state.training[i].done = true;
+    });
+  }
+  return jobs.Peek().training;
+}
+
+void RollOutTrainedMethods(const store::Session& session, int tests) {
+  for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
+    if (fs::exists(fs::path(session.dir()) / "checkpoints" / (std::string(method) + ".ckpt"))) {
+      cli::EvaluateSessionMethod(session, method, tests, cli::DefaultTestSeed(session));
+    }
+  }
+}
+
+}  // namespace recon::studio
