@@ -25,8 +25,11 @@ class Studio {
   Studio() : dir_(fs::temp_directory_path() / ("recon-studio-bench-" + std::to_string(getpid()))) {
     fs::remove_all(dir_);
     recon::studio::StudioOptions options;
-    options.session_dir = dir_.string();
+    options.session_dir = (dir_ / "session").string();
+    options.recent_sessions_file = (dir_ / "recent.json").string();
     options.real_time = false;
+    options.train_steps = 100;  // the playback benchmark needs checkpoints, not good ones
+    options.rollout_tests = 2;
     controller_ = std::make_unique<StudioController>(options);
     controller_->Push(recon::ui::AssignBeacon{"plate", "plate"});
     controller_->Push(recon::ui::StartRecording{});
@@ -94,6 +97,37 @@ void BM_StudioFrameWhileTraining(benchmark::State& state) {
   studio.WaitIdle();
 }
 BENCHMARK(BM_StudioFrameWhileTraining)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+
+// Both methods' rollouts of one scene playing back side by side (two 320 x 240 renders per
+// step shown, at the control rate), on the Rollouts screen.
+void BM_StudioFramePlayingRollouts(benchmark::State& state) {
+  Studio& studio = Shared();
+  studio.controller().Push(recon::ui::StartTraining{{"baseline", "recon"}, 100});
+  studio.WaitIdle();
+  studio.controller().Push(recon::ui::RunRollouts{2});
+  studio.WaitIdle();
+  studio.controller().Push(recon::ui::OpenStep{recon::teach::Step::kRollouts});
+  studio.controller().Push(recon::ui::PlayRollouts{true});
+  studio.WaitIdle();
+  for (int i = 0; i < 10; ++i) studio.Frame();
+  int64_t playing_frames = 0;
+  for (auto _ : state) {
+    studio.Frame();
+    if (!studio.controller().Snapshot().rollouts_playing) {
+      studio.controller().Push(recon::ui::PlayRollouts{true});  // start over at the end
+    } else {
+      ++playing_frames;
+    }
+  }
+  state.counters["frames_per_second"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["playing_share"] =
+      static_cast<double>(playing_frames) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_StudioFramePlayingRollouts)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
 
 }  // namespace
 

@@ -7,6 +7,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 #include "app/cli/session_summary.h"
@@ -17,6 +19,7 @@
 #include "engine/core/stats.h"
 #include "engine/experiments/evaluation.h"
 #include "engine/experiments/recipe.h"
+#include "engine/store/rollout_replay.h"
 
 namespace recon::cli {
 
@@ -175,7 +178,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
 }
 
 json EvaluateSessionMethod(const store::Session& session, const std::string& method, int tests,
-                           uint64_t seed) {
+                           uint64_t seed, bool keep_replay) {
   const store::SessionManifest& m = session.manifest();
   learn::ParseMethod(method);
   const std::string checkpoint =
@@ -190,8 +193,8 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   const std::unique_ptr<worlds::World> probe = make_world();
   const learn::Policy policy = learn::LoadPolicy(checkpoint);
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<experiments::ScenarioOutcome> outcomes =
-      experiments::EvaluatePolicy(make_world, policy, seeds);
+  std::vector<experiments::ScenarioOutcome> outcomes =
+      experiments::EvaluatePolicy(make_world, policy, seeds, keep_replay);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<double> metrics = experiments::Metrics(outcomes);
@@ -209,24 +212,44 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   const std::string label = trained && trained->is_object() && trained->contains("label")
                                 ? (*trained)["label"].get<std::string>()
                                 : method;
-  const json record = {{"method", method},
-                       {"label", label},
-                       {"checkpoint", fs::path("checkpoints") / (method + ".ckpt")},
-                       {"metric_name", probe->MetricName()},
-                       {"metric_key", probe->MetricKey()},
-                       {"higher_is_better", probe->HigherIsBetter()},
-                       {"metric_mean", Mean(metrics)},
-                       {"metric_sem", StandardError(metrics)},
-                       {"has_success", probe->HasSuccess()},
-                       {"success_rate", Mean(successes)},
-                       {"success_sem", StandardError(successes)},
-                       {"details", experiments::MeanDetails(outcomes)},
-                       {"tests", tests},
-                       {"seed", seed},
-                       {"seconds", seconds},
-                       {"per_scenario", per_scenario}};
+  // The replay goes first: once the JSON names it, it is there. A replay left from an earlier
+  // evaluation would show other rollouts than the JSON describes, so it goes when none is kept.
+  const fs::path replay_name = fs::path("rollouts") / (method + ".replay.h5");
+  const std::string replay_path = (fs::path(session.dir()) / replay_name).string();
+  const bool has_replay = !outcomes.empty() && !outcomes.front().replay.empty();
+  EnsureWritableDirectory(fs::path(replay_path).parent_path().string());
+  if (has_replay) {
+    store::RolloutReplay replay;
+    replay.world = probe->Name();
+    replay.method = method;
+    replay.state_size = static_cast<int>(outcomes.front().replay.front().size());
+    for (size_t i = 0; i < outcomes.size(); ++i) {
+      replay.scenarios.push_back(
+          {seeds[i], outcomes[i].metric, outcomes[i].succeeded, std::move(outcomes[i].replay)});
+    }
+    store::WriteRolloutReplay(replay_path, replay);
+  } else {
+    std::error_code ignored;
+    fs::remove(replay_path, ignored);
+  }
+  json record = {{"method", method},
+                 {"label", label},
+                 {"checkpoint", fs::path("checkpoints") / (method + ".ckpt")},
+                 {"metric_name", probe->MetricName()},
+                 {"metric_key", probe->MetricKey()},
+                 {"higher_is_better", probe->HigherIsBetter()},
+                 {"metric_mean", Mean(metrics)},
+                 {"metric_sem", StandardError(metrics)},
+                 {"has_success", probe->HasSuccess()},
+                 {"success_rate", Mean(successes)},
+                 {"success_sem", StandardError(successes)},
+                 {"details", experiments::MeanDetails(outcomes)},
+                 {"tests", tests},
+                 {"seed", seed},
+                 {"seconds", seconds},
+                 {"per_scenario", per_scenario}};
+  if (has_replay) record["replay"] = replay_name.string();
   const std::string path = (fs::path(session.dir()) / "rollouts" / (method + ".json")).string();
-  EnsureWritableDirectory(fs::path(path).parent_path().string());
   WriteFileAtomically(path, record.dump(1) + "\n");
   return record;
 }

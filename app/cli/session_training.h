@@ -44,9 +44,12 @@ nlohmann::json TrainSessionMethod(
 
 /// Rolls `method`'s checkpoint out on `tests` new scenes of the session's simulated cell with the
 /// beacons removed (scene i from Rng::Derive(seed, i)), writes rollouts/<method>.json and returns
-/// it. UserError without a checkpoint or a simulated world.
+/// it. When the world has a replay (World::ReplayState) and `keep_replay`, also writes every
+/// step's state to rollouts/<method>.replay.h5 (store/rollout_replay.h), before the JSON, which
+/// names it as "replay"; otherwise an older replay file of the method is removed. UserError
+/// without a checkpoint or a simulated world.
 nlohmann::json EvaluateSessionMethod(const store::Session& session, const std::string& method,
-                                     int tests, uint64_t seed);
+                                     int tests, uint64_t seed, bool keep_replay = true);
 
 /// The seeds a session trains and tests with unless told otherwise (derived from its own).
 uint64_t DefaultTrainingSeed(const store::Session& session);

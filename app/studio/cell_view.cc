@@ -1,6 +1,9 @@
 #include "app/studio/cell_view.h"
 
+#include <Eigen/LU>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <string>
 
 #include "devices/cell/scene_camera.h"
@@ -21,6 +24,7 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
     const std::array<float, 2> px = pixel(p);
     s.objects.push_back({name, px[0], px[1]});
   };
+  s.grip_pixel = pixel(world.arm().GripPosition());
   object("plate", world.PlatePosition());
   object("bowl", world.BowlPosition());
   object("toast", world.ToastPosition());
@@ -37,6 +41,47 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
     view.noise_m = manifest.beacon_noise_sigma;
     s.beacons.push_back(view);
   }
+}
+
+}  // namespace recon::studio
+
+namespace recon::studio {
+
+Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
+                               int height, double speed_m_s) {
+  const tags::PinholeCamera camera = cell::SceneCamera(world.scene(), "top", width, height);
+  const Eigen::Vector3d grip = world.arm().GripPosition();
+  const Eigen::Vector2d at = camera.Project(grip);
+  Eigen::Matrix2d to_screen;  // table x, y (per metre) -> pixels
+  to_screen.col(0) = (camera.Project(grip + Eigen::Vector3d(0.05, 0, 0)) - at) / 0.05;
+  to_screen.col(1) = (camera.Project(grip + Eigen::Vector3d(0, 0.05, 0)) - at) / 0.05;
+  const Eigen::Vector2d wanted(input.screen_right, -input.screen_up);  // image rows grow down
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  const double deflection = std::min(1.0, wanted.norm());
+  if (deflection > 0 && std::abs(to_screen.determinant()) > 1e-9) {
+    const Eigen::Vector2d table = to_screen.inverse() * wanted;
+    velocity.head<2>() = table.normalized() * deflection * speed_m_s;
+  }
+  velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
+  return velocity;
+}
+
+}  // namespace recon::studio
+
+namespace recon::studio {
+
+RgbImage ImageFromObservation(const std::vector<float>& y, int size) {
+  RgbImage image;
+  const size_t plane = static_cast<size_t>(size) * size;
+  if (size <= 0 || y.size() != 3 * plane) return image;
+  image.width = image.height = size;
+  image.rgb.resize(3 * plane);
+  for (size_t p = 0; p < plane; ++p) {
+    for (size_t c = 0; c < 3; ++c) {
+      image.rgb[3 * p + c] = static_cast<uint8_t>(std::clamp(y[c * plane + p], 0.0f, 255.0f));
+    }
+  }
+  return image;
 }
 
 }  // namespace recon::studio

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "engine/store/manifest.h"
@@ -15,5 +16,22 @@ namespace recon::studio {
 void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, int width,
                       int height, const store::SessionManifest& manifest,
                       const std::vector<float>& reading, ui::StudioSnapshot& snapshot);
+
+}  // namespace recon::studio
+
+namespace recon::studio {
+
+/// The grip point's velocity in the table frame for a teleop input given relative to the camera
+/// view (width x height, the Record screen's): the arrows move the arm the way the teacher sees
+/// it move on screen, whatever way the camera is mounted. `speed_m_s` at full deflection.
+Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
+                               int height, double speed_m_s);
+
+}  // namespace recon::studio
+
+namespace recon::studio {
+
+/// A camera observation y (3 x size x size, channels first, 0-255) as an image to show.
+RgbImage ImageFromObservation(const std::vector<float>& y, int size);
 
 }  // namespace recon::studio

@@ -12,13 +12,18 @@
 #include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
 #include "app/studio/job_thread.h"
+#include "app/studio/recent_sessions.h"
+#include "app/studio/rollout_playback.h"
 #include "app/studio/studio_jobs.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
+#include "engine/teach/cartesian_teleop.h"
+#include "engine/teach/play_recorder.h"
 #include "engine/teach/recorder.h"
 #include "engine/teach/session_setup.h"
+#include "engine/teach/stream_health.h"
 #include "engine/teach/workflow.h"
 #include "engine/worlds/tabletop.h"
 
@@ -30,63 +35,129 @@ using Clock = std::chrono::steady_clock;
 /// Everything the cell thread owns: the session, the simulated world, its camera, the recorder.
 class StudioController::Cell {
  public:
-  explicit Cell(const StudioOptions& options) : options_(options) {}
+  explicit Cell(const StudioOptions& options)
+      : options_(options),
+        recent_(options.recent_sessions_file.empty() ? RecentSessions::DefaultPath()
+                                                     : options.recent_sessions_file) {
+    if (!recent_.problem().empty()) AddError(recent_.problem());
+  }
 
-  /// Opens or creates the session and the world. Runs on the cell thread (GL contexts and
-  /// MuJoCo data belong to the thread that made them).
+  /// Opens or creates the session and the world, if the options name one (without, the studio
+  /// starts at the session picker). Runs on the cell thread (GL contexts and MuJoCo data belong
+  /// to the thread that made them).
   void Start() {
+    view_ = render::MujocoRendererFactory()();
+    if (options_.session_dir.empty()) {
+      picking_session_ = true;
+      status_ = "Open a session, or create one in a new folder.";
+      return;
+    }
+    OpenSessionAt(options_.session_dir);
+  }
+
+  /// Opens the session in `dir` (creating it there if the folder holds none) and makes its world.
+  /// The session open until now stays open if this fails.
+  void OpenSessionAt(const std::string& dir) {
+    const bool exists = store::Session::Exists(dir);
     const std::string world =
-        store::Session::Exists(options_.session_dir)
-            ? store::LoadManifest((fs::path(options_.session_dir) / "session.json").string()).world
-            : options_.world;
+        exists ? store::LoadManifest((fs::path(dir) / "session.json").string()).world
+               : options_.world;
     // The steps (a camera to click objects in, a UWB frame to calibrate) are the arm cell's.
     if (world != "tabletop") {
       throw UserError("the studio teaches in the tabletop cell; a " + world +
                       " session is recorded and trained from the command line (recon record, "
                       "recon train)");
     }
-    if (store::Session::Exists(options_.session_dir)) {
-      session_.emplace(store::Session::Open(options_.session_dir));
-      world_ = cli::MakeSessionWorld(session_->manifest(), session_->manifest().placement);
+    if (session_ && fs::equivalent(session_->dir(), dir)) {
+      picking_session_ = false;
+      return;
+    }
+    std::optional<store::Session> opened;
+    std::unique_ptr<worlds::World> made;
+    if (exists) {
+      opened.emplace(store::Session::Open(dir));
+      made = cli::MakeSessionWorld(opened->manifest(), opened->manifest().placement);
     } else {
       store::SessionManifest probe;
       probe.world = options_.world;
       probe.placement = teach::DefaultTeachingPlacement(options_.world);
       probe.image_size = options_.image_size;
-      world_ = cli::MakeSessionWorld(probe, probe.placement);
+      probe.beacon_noise_sigma = options_.beacon_noise_sigma;
+      made = cli::MakeSessionWorld(probe, probe.placement);
       teach::SessionSetup setup;
       setup.world_name = probe.world;
       setup.placement = probe.placement;
       setup.image_size = probe.image_size;
       setup.seed = options_.seed;
-      session_.emplace(
-          store::Session::Create(options_.session_dir, teach::NewSessionManifest(setup, *world_)));
+      setup.beacon_noise_sigma = options_.beacon_noise_sigma;
+      opened.emplace(store::Session::Create(dir, teach::NewSessionManifest(setup, *made)));
     }
+    // The new session is good: drop everything that belonged to the old one.
+    recorder_.reset();
+    play_.reset();
+    replace_.reset();
+    last_training_.clear();
+    report_path_.clear();
+    world_ = std::move(made);
+    session_ = std::move(opened);
     world_->Reset(
         store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
-    view_ = render::MujocoRendererFactory()();
-    status_ = "Session " + options_.session_dir + ": " + session_->manifest().world + ", " +
-              session_->manifest().cell + " cell.";
+    picking_session_ = false;
+    current_step_ = teach::Step::kCell;
+    playback_ = std::make_unique<RolloutPlayback>(session_->manifest(), session_->dir());
+    ReloadPlayback();
+    Changed();
+    if (std::string problem = recent_.Add(session_->dir()); !problem.empty()) AddError(problem);
+    status_ = std::string(exists ? "Opened" : "Created") + " session " + session_->dir() + ": " +
+              session_->manifest().world + ", " + session_->manifest().cell + " cell.";
   }
 
   void Handle(const ui::StudioCommand& command) {
     Changed();  // whatever it does (or fails to do), the workflow is re-read
+    const bool needs_session = !std::holds_alternative<ui::OpenSession>(command) &&
+                               !std::holds_alternative<ui::ShowSessionPicker>(command) &&
+                               !std::holds_alternative<ui::DismissErrors>(command);
+    if (needs_session && !session_) throw UserError("open or create a session first");
     std::visit([this](const auto& c) { Apply(c); }, command);
   }
 
-  /// One pass of the cell loop: a recording step, the camera, a finished job.
+  /// One pass of the cell loop: a recording step, a play sample, the beacons, a finished job.
   void Tick() {
+    const Clock::time_point now = Clock::now();
     if (recorder_ && recorder_->recording()) {
-      if (!options_.real_time || Clock::now() >= next_tick_) {
-        next_tick_ = Clock::now() + std::chrono::milliseconds(100);
+      // A person teleoperating needs the real control rate, whatever --fast says.
+      const bool paced = options_.real_time || teleop_mode_ != "scripted";
+      if (!paced || now >= next_tick_) {
+        next_tick_ = now + kControlPeriod;
         recorder_->Tick();
+        arm_health_.Add(Seconds(now));
+        if (const Sample* last = recorder_->last()) last_reading_ = last->b;
+        beacon_health_.Add(Seconds(now), last_reading_);
         if (!recorder_->recording()) Commit();
       }
+    } else if (play_ && play_->recording()) {
+      if (!options_.real_time || now >= next_tick_) {
+        next_tick_ = now + kControlPeriod;
+        play_->Tick();
+        ShowPlaySample();
+        if (!play_->recording()) CommitPlayChunk();
+      }
+    } else if (world_ && now >= next_beacon_) {
+      // The simulated DWM1001 reports at 10 Hz. Only read here when nothing records: a reading
+      // draws beacon noise from the world's generator, which a recording must have to itself
+      // so that its scenario seed reproduces it exactly.
+      next_beacon_ = now + kControlPeriod;
+      last_reading_ = world_->BeaconReading();
+      beacon_health_.Add(Seconds(now), last_reading_);
     }
+    if (playback_) playback_->Tick(now);
     ApplyFinishedJob();
   }
 
-  bool Busy() const { return (recorder_ && recorder_->recording()) || jobs_.Running(); }
+  bool Busy() const {
+    return (recorder_ && recorder_->recording()) || (play_ && play_->recording()) ||
+           jobs_.Running();
+  }
   /// Shown on screen until dismissed; the same error twice in a row is shown once.
   void AddError(const std::string& error) {
     if (errors_.empty() || errors_.back() != error) errors_.push_back(error);
@@ -96,20 +167,57 @@ class StudioController::Cell {
   /// The snapshot: the session's side (rebuilt only after something changed it, see dirty_),
   /// then what moves by itself: the camera, the recording, the job's progress.
   void Publish(ui::StudioSnapshot& s) {
+    if (!session_) {
+      s = {};
+      s.picking_session = true;
+      s.recent_sessions = recent_.entries();
+      s.errors = errors_;
+      s.status = status_;
+      return;
+    }
     if (dirty_) {
       RebuildSessionView();
       dirty_ = false;
     }
     s = session_view_;
     s.current_step = current_step_;
+    s.picking_session = picking_session_;
+    s.recent_sessions = recent_.entries();
     RenderView(s);
     const JobState job = jobs_.Peek();
     s.calibration.running = job.running && job.name == "calibration";
     s.calibration.points_collected = job.calibration_points;
     s.recording = recorder_ && recorder_->recording();
     s.recording_samples = recorder_ ? recorder_->samples() : 0;
+    s.teleop = teleop_mode_;
+    s.teleop_input = teleop_input_;
+    if (auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get())) {
+      const Eigen::Vector3d grip = tabletop->arm().GripPosition();
+      s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
+                  static_cast<float>(grip.z())};
+      s.gripper_closed = tabletop->arm().GripperClosed();
+    }
+    s.recording_play = play_ && play_->recording();
+    s.play_recorded = play_done_ + (play_ ? play_->samples() : 0);
+    s.play_target = play_target_;
+    s.play_image = play_image_;
+    s.play_image_frame = play_image_frame_;
+    s.play_reading = play_reading_;
+    ShowDeviceHealth(s);
     s.training = job.name == "training" ? job.training : last_training_;
     s.rollouts_running = job.running && job.name == "rollouts";
+    s.rollout_tests = options_.rollout_tests;
+    if (current_step_ == teach::Step::kRollouts && playback_) {
+      // Drawn only while the Rollouts screen shows: two renders per step shown.
+      try {
+        playback_->Fill(s.rollouts, *view_, options_.view_width, options_.view_height);
+        s.rollouts_playing = playback_->playing();
+      } catch (const UserError& e) {
+        // A scene's data is damaged: say so once and stop the playback, not the studio.
+        AddError(std::string("cannot play the rollouts back: ") + e.what());
+        playback_ = std::make_unique<RolloutPlayback>(session_->manifest(), session_->dir());
+      }
+    }
     s.report_path = report_path_;
     s.errors = errors_;
     s.status = job.running ? "Running " + job.name + "..." : status_;
@@ -118,6 +226,19 @@ class StudioController::Cell {
  private:
   /// Marks the session's side of the snapshot stale: after every command, commit and job.
   void Changed() { dirty_ = true; }
+
+  /// Opens the rollouts' replay files for the playback; a damaged one is reported, not fatal.
+  void ReloadPlayback() {
+    try {
+      playback_->Reload();
+    } catch (const UserError& e) {
+      AddError(std::string("cannot play the rollouts back: ") + e.what());
+    }
+  }
+
+  double Seconds(Clock::time_point t) const {
+    return std::chrono::duration<double>(t - started_).count();
+  }
 
   void ApplyFinishedJob() {
     const JobState job = jobs_.Take();
@@ -137,8 +258,18 @@ class StudioController::Cell {
     s.world = m.world;
     s.cell_kind = m.cell;
     for (const store::DeviceEntry& d : m.devices) {
-      s.devices.push_back({d.role, d.kind, d.detail, true, d.role == "camera" ? 30.0 : 10.0, ""});
+      if (d.role == "teleop") continue;  // the teleops are listed below, from what is plugged in
+      s.devices.push_back({d.role, d.kind, d.detail, true, 0.0, ""});
     }
+    s.devices.push_back({"teleop", "keyboard",
+                         "arrows move the arm, Page Up/Down raise and "
+                         "lower it, Space opens and closes the gripper",
+                         true, 0.0, ""});
+    s.devices.push_back({"teleop", "gamepad", "none found", false, 0.0, ""});
+    s.teleop_choices = {{"scripted", "Scripted", true, ""},
+                        {"keyboard", "Keyboard", true, ""},
+                        {"gamepad", "Gamepad", false,
+                         "no gamepad connected (gamepad drivers come with the hardware path)"}};
     std::optional<calib::CalibrationReport> calibration;
     if (!m.calibration_file.empty()) {
       calibration =
@@ -152,7 +283,6 @@ class StudioController::Cell {
     s.next_step = teach::NextStep(facts);
     s.calibration = CalibrationView(calibration);
     s.calibration.points_target = options_.calibration_points;
-    s.teleop = "scripted teleop (the simulated teacher)";
     for (const store::EpisodeEntry& e : session_->demos()) {
       s.episodes.push_back({e.name, static_cast<int>(e.meta.num_samples), e.meta.teaching_seconds,
                             e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
@@ -226,13 +356,98 @@ class StudioController::Cell {
     return view;
   }
 
-  /// The live camera, the objects one can click and where the beacons read.
+  /// The live camera, the objects one can click and where the beacons read; rendered only for
+  /// the screens that show it, so training and rollouts get the CPU the others would take.
   void RenderView(ui::StudioSnapshot& s) {
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) return;  // the other worlds have no camera
+    switch (current_step_) {
+      case teach::Step::kCell:
+      case teach::Step::kBeacons:
+      case teach::Step::kRecord:
+      case teach::Step::kPlay:
+        break;
+      default:
+        if (!(recorder_ && recorder_->recording())) return;
+    }
     ShowTabletopView(*tabletop, *view_, options_.view_width, options_.view_height,
-                     session_->manifest(), world_->BeaconReading(), s);
+                     session_->manifest(), last_reading_, s);
     s.camera_frame = ++camera_frames_;
+    camera_health_.Add(Seconds(Clock::now()));
+  }
+
+  /// The devices' measured rates and the beacons' health, from what actually arrived lately.
+  void ShowDeviceHealth(ui::StudioSnapshot& s) const {
+    const double now = Seconds(Clock::now());
+    const teach::StreamStats camera = camera_health_.Stats(now);
+    const teach::StreamStats beacon = beacon_health_.Stats(now);
+    const teach::StreamStats arm = arm_health_.Stats(now);
+    for (ui::DeviceView& d : s.devices) {
+      if (d.role == "camera") d.rate_hz = camera.rate_hz;
+      if (d.role == "beacons") d.rate_hz = beacon.rate_hz;
+      if (d.role == "arm") d.rate_hz = arm.rate_hz;  // commanded while recording, else idle
+    }
+    for (ui::BeaconView& b : s.beacons) {
+      b.rate_hz = beacon.rate_hz;
+      b.dropout_fraction = beacon.dropout_fraction;
+      b.noise_m = beacon.noise;
+    }
+  }
+
+  /// The latest play sample, for the Play screen.
+  void ShowPlaySample() {
+    const PlaySample* sample = play_->last();
+    if (sample == nullptr) return;
+    play_image_ = ImageFromObservation(sample->y, session_->manifest().image_size);
+    ++play_image_frame_;
+    play_reading_ = sample->b;
+    last_reading_ = sample->b;
+    beacon_health_.Add(Seconds(Clock::now()), last_reading_);
+  }
+
+  /// Commits the play chunk just recorded and starts the next one while samples remain.
+  void CommitPlayChunk() {
+    Changed();
+    const store::EpisodeEntry& e = session_->CommitPlay(play_->Take());
+    play_done_ += static_cast<int>(e.meta.num_samples);
+    status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) +
+              " play samples, " + std::to_string(play_done_) + " of " +
+              std::to_string(play_target_) + ").";
+    if (play_done_ < play_target_) {
+      StartPlayChunk();
+    } else {
+      play_.reset();
+      world_->Reset(store::Session::ScenarioSeed(session_->manifest().seed,
+                                                 session_->NextDemoNumber(), false));
+    }
+  }
+
+  /// A chunk is one scenario's worth of play, seeded as `recon record --play` seeds it.
+  void StartPlayChunk() {
+    const int chunk =
+        std::min(std::max(1, world_->PlaySamplesPerScenario()), play_target_ - play_done_);
+    play_ = std::make_unique<teach::PlayRecorder>(*world_, "simulated-play");
+    play_->Start(
+        store::Session::ScenarioSeed(session_->manifest().seed, session_->NextPlayNumber(), true),
+        chunk);
+  }
+
+  teach::Teacher MakeTeacher() {
+    if (teleop_mode_ == "scripted") return teach::ScriptedTeacher;
+    auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
+    if (tabletop == nullptr) throw UserError("teleop needs the arm cell");
+    return teach::CartesianTeleopTeacher(*tabletop, &teleop_command_);
+  }
+
+  std::string TeleopSource() const {
+    return teleop_mode_ == "scripted" ? "scripted-teleop" : teleop_mode_ + "-teleop";
+  }
+
+  void StartDemo(uint64_t seed) {
+    teleop_input_ = {};
+    teleop_command_ = {};
+    recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
+    recorder_->Start(seed);
   }
 
   void Commit() {
@@ -273,11 +488,11 @@ class StudioController::Cell {
   void Apply(const ui::CancelCalibration&) { jobs_.Cancel(); }
   void Apply(const ui::StartRecording&) {
     RequireIdle("record");
-    recorder_ =
-        std::make_unique<teach::DemoRecorder>(*world_, teach::ScriptedTeacher, "scripted-teleop");
-    recorder_->Start(
+    StartDemo(
         store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
-    status_ = "Recording a demonstration.";
+    status_ = teleop_mode_ == "scripted"
+                  ? "Recording a demonstration (the scripted teacher)."
+                  : "Recording a demonstration: drive the arm, Stop and keep when done.";
   }
   void Apply(const ui::StopRecording&) {
     if (recorder_ && recorder_->recording()) Commit();
@@ -295,9 +510,7 @@ class StudioController::Cell {
   void Apply(const ui::ReRecordEpisode& c) {
     RequireIdle("re-record");
     const store::EpisodeEntry& e = session_->Find(c.name);
-    recorder_ =
-        std::make_unique<teach::DemoRecorder>(*world_, teach::ScriptedTeacher, "scripted-teleop");
-    recorder_->Start(e.meta.seed);
+    StartDemo(e.meta.seed);
     replace_ = c.name;
     status_ = "Re-recording " + c.name + ".";
   }
@@ -307,14 +520,51 @@ class StudioController::Cell {
   }
   void Apply(const ui::RecordPlay& c) {
     RequireIdle("record play data");
-    teach::RecordPlan plan;
-    plan.play_samples = c.samples;
-    plan.seed = session_->manifest().seed;
-    teach::RecordIntoSession(*session_, *world_, plan);
-    world_->Reset(
-        store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
-    status_ = "Recorded " + std::to_string(c.samples) + " play samples.";
+    if (c.samples < 1) throw UserError("ask for at least one play sample");
+    play_target_ = c.samples;
+    play_done_ = 0;
+    StartPlayChunk();
+    status_ = "Recording " + std::to_string(c.samples) + " play samples.";
   }
+  void Apply(const ui::StopPlay&) {
+    if (!play_ || !play_->recording()) return;
+    // What was recorded is good data: keep it, and ask for no more.
+    play_target_ = play_done_ + play_->samples();
+    if (play_->samples() > 0) {
+      CommitPlayChunk();
+    } else {
+      play_.reset();
+    }
+    status_ = "Stopped play recording after " + std::to_string(play_done_) + " samples.";
+  }
+  void Apply(const ui::SetTeleopMode& c) {
+    if (recorder_ && recorder_->recording()) {
+      throw UserError("finish or discard the recording before changing the teleop");
+    }
+    if (c.mode == "gamepad") {
+      throw UserError("no gamepad connected (gamepad drivers come with the hardware path)");
+    }
+    if (c.mode != "scripted" && c.mode != "keyboard") {
+      throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
+    }
+    teleop_mode_ = c.mode;
+  }
+  void Apply(const ui::TeleopInput& c) {
+    teleop_input_ = c;
+    auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
+    if (tabletop == nullptr) return;
+    teleop_command_.velocity_m_s =
+        TeleopVelocity(*tabletop, c, options_.view_width, options_.view_height, kTeleopSpeed_m_s);
+    teleop_command_.close_gripper = c.close_gripper;
+  }
+  void Apply(const ui::ShowSessionPicker& c) { picking_session_ = c.show && !Busy(); }
+  void Apply(const ui::OpenSession& c) {
+    RequireIdle("switch sessions");
+    if (c.dir.empty()) throw UserError("type the session's folder first");
+    OpenSessionAt(c.dir);
+  }
+  void Apply(const ui::PlayRollouts& c) { playback_->SetPlaying(c.playing); }
+
   void Apply(const ui::StartTraining& c) {
     RequireIdle("train");
     cli::SessionTrainingOptions training;
@@ -335,10 +585,13 @@ class StudioController::Cell {
     const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
     jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
       RollOutTrainedMethods(*session_, tests);
-      return [this] { status_ = "Rollouts done."; };
+      return [this] {
+        ReloadPlayback();
+        status_ = "Rollouts done.";
+      };
     });
   }
-  void Apply(const ui::ShowRolloutFrame&) {}  // frame-by-frame playback: not built yet
+  void Apply(const ui::ShowRolloutFrame& c) { playback_->Show(c.scenario, c.frame); }
   void Apply(const ui::WriteReport&) {
     RequireIdle("write the report");
     report_path_ = cli::WriteReportForSession(*session_);
@@ -346,13 +599,33 @@ class StudioController::Cell {
   }
   void Apply(const ui::DismissErrors&) { errors_.clear(); }
 
+  static constexpr auto kControlPeriod = std::chrono::milliseconds(100);  // the arm's 10 Hz
+  static constexpr double kTeleopSpeed_m_s = 0.1;
+
   StudioOptions options_;
+  RecentSessions recent_;
+  bool picking_session_ = false;
   std::optional<store::Session> session_;
   std::unique_ptr<worlds::World> world_;
   std::unique_ptr<worlds::SceneRenderer> view_;
   std::unique_ptr<teach::DemoRecorder> recorder_;
   std::optional<std::string> replace_;
+  std::string teleop_mode_ = "scripted";
+  ui::TeleopInput teleop_input_;
+  teach::TeleopCommand teleop_command_;
+  std::unique_ptr<teach::PlayRecorder> play_;
+  std::unique_ptr<RolloutPlayback> playback_;
+  int play_target_ = 0, play_done_ = 0;
+  RgbImage play_image_;
+  uint64_t play_image_frame_ = 0;
+  std::vector<float> play_reading_;
+  const Clock::time_point started_ = Clock::now();
   Clock::time_point next_tick_ = Clock::now();
+  Clock::time_point next_beacon_ = Clock::now();
+  std::vector<float> last_reading_;
+  teach::StreamHealth camera_health_{30.0};
+  teach::StreamHealth beacon_health_{10.0};
+  teach::StreamHealth arm_health_{10.0};
   JobThread jobs_;
   ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
   bool dirty_ = true;

@@ -14,10 +14,14 @@
 namespace recon::studio {
 
 struct StudioOptions {
-  std::string session_dir;  ///< opened if it holds a session, created otherwise
+  /// Opened if it holds a session, created otherwise; empty: start at the session picker.
+  std::string session_dir;
+  /// The list of recent sessions (empty: RecentSessions::DefaultPath()).
+  std::string recent_sessions_file;
   std::string world = "tabletop";
-  int image_size = 64;  ///< the policy camera (new sessions)
-  uint64_t seed = 1;    ///< new sessions
+  int image_size = 64;              ///< the policy camera (new sessions)
+  uint64_t seed = 1;                ///< new sessions
+  double beacon_noise_sigma = 0.0;  ///< new sessions' simulated beacon noise (metres)
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;

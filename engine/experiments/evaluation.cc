@@ -17,7 +17,8 @@ double SquaredError(const std::vector<float>& a, const std::vector<float>& b) {
 
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
-                                            const std::vector<uint64_t>& scenario_seeds) {
+                                            const std::vector<uint64_t>& scenario_seeds,
+                                            bool keep_replay) {
   const size_t n = scenario_seeds.size();
   std::vector<std::unique_ptr<worlds::World>> scenario_worlds;
   scenario_worlds.reserve(n);
@@ -28,6 +29,17 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
   if (n == 0) return {};
   const bool score_actions = scenario_worlds.front()->ScoresActions();
   const int steps = scenario_worlds.front()->EpisodeLength();
+  std::vector<ScenarioOutcome> outcomes(n);
+  // ReplayState() only reads the world, so keeping it cannot change the rollout.
+  const bool replay =
+      keep_replay && !score_actions && !scenario_worlds.front()->ReplayState().empty();
+  const auto keep_frame = [&] {
+    for (size_t i = 0; i < n; ++i) outcomes[i].replay.push_back(scenario_worlds[i]->ReplayState());
+  };
+  if (replay) {
+    for (ScenarioOutcome& o : outcomes) o.replay.reserve(static_cast<size_t>(steps) + 1);
+    keep_frame();
+  }
   std::vector<std::vector<float>> xs(n), ys(n);
   std::vector<double> action_error(n, 0.0);
   for (int t = 0; t < steps; ++t) {
@@ -46,8 +58,8 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
         scenario_worlds[i]->Step(actions[i]);
       }
     }
+    if (replay) keep_frame();
   }
-  std::vector<ScenarioOutcome> outcomes(n);
   for (size_t i = 0; i < n; ++i) {
     outcomes[i].metric =
         score_actions ? action_error[i] / steps : scenario_worlds[i]->EpisodeMetric();

@@ -19,6 +19,10 @@ struct ScenarioOutcome {
   double metric = 0;
   bool succeeded = false;                 ///< only meaningful for worlds with HasSuccess()
   std::map<std::string, double> details;  ///< World::OutcomeDetails() at the end
+  /// World::ReplayState() after the reset and after each step (EpisodeLength() + 1 states), to
+  /// play the rollout back; empty unless asked for, and for worlds without a replay or that
+  /// ScoresActions() (whose rollout is the expert's, not the policy's).
+  std::vector<std::vector<double>> replay;
 };
 
 /// Scores `policy` on each test scenario, one world per scenario stepped in lockstep so the
@@ -26,10 +30,12 @@ struct ScenarioOutcome {
 /// the world's EpisodeMetric scores the end state; for worlds that ScoresActions(), the expert
 /// drives and the metric is the mean squared difference between the policy's and the expert's
 /// actions over the demonstration (mean over steps and action components).
-/// The worlds are made without beacons: a trained policy never reads one.
+/// The worlds are made without beacons: a trained policy never reads one. `keep_replay` fills
+/// each outcome's replay; it changes nothing else.
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
-                                            const std::vector<uint64_t>& scenario_seeds);
+                                            const std::vector<uint64_t>& scenario_seeds,
+                                            bool keep_replay = false);
 
 /// The expert's outcome on the same scenarios (the ceiling a figure draws as a reference; 0 for
 /// worlds that ScoresActions()).

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "engine/core/error.h"
+#include "engine/teach/play_recorder.h"
 
 namespace recon::teach {
 
@@ -51,18 +52,11 @@ store::DemoRecord DemoRecorder::Take() {
 }
 
 store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count) {
-  world.Reset(seed);
-  const int n = count > 0 ? count : std::max(1, world.PlaySamplesPerScenario());
-  store::PlayRecord record;
-  record.meta.kind = "play";
-  record.meta.seed = seed;
-  record.meta.source = "simulated-play";
-  record.meta.recorded_at = store::NowIso8601();
-  for (int i = 0; i < n; ++i) record.samples.push_back(world.SamplePlay());
-  record.meta.num_samples = n;
-  // The experiments' accounting: a play sample costs the teacher one control period.
-  record.meta.teaching_seconds = n * world.StepSeconds();
-  return record;
+  PlayRecorder recorder(world, "simulated-play");
+  recorder.Start(seed, count > 0 ? count : std::max(1, world.PlaySamplesPerScenario()));
+  while (recorder.Tick()) {
+  }
+  return recorder.Take();
 }
 
 namespace {

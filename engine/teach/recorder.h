@@ -40,6 +40,10 @@ class DemoRecorder {
   bool Tick();
   bool recording() const { return recording_; }
   int samples() const { return static_cast<int>(record_.episode.samples.size()); }
+  /// The latest recorded sample (nullptr before the first).
+  const Sample* last() const {
+    return record_.episode.samples.empty() ? nullptr : &record_.episode.samples.back();
+  }
   /// Ends the recording (if still running) and hands over the episode, with its metadata.
   store::DemoRecord Take();
 

@@ -73,6 +73,14 @@ class Tabletop : public World {
   /// the gripper at the end), "grip_nearer_bowl" (the gripper ended nearer the bowl than the
   /// plate: the paper's Baseline failure), "toast_to_bowl_m".
   std::map<std::string, double> OutcomeDetails() const override;
+  /// The pose the current camera image shows, valid after Reset and Step: MuJoCo's qpos (arm
+  /// joints, fingers, the toast's free joint) as the frame was rendered from it, then the mocap
+  /// bodies' (plate with its beacon, bowl) positions (3 each) and quaternions (4 each).
+  /// ReplayStateSize() values.
+  std::vector<double> ReplayState() const override;
+  /// Sets that pose at rest, recomputes positions and renders CameraImage() again.
+  void ShowReplayState(const std::vector<double>& state) override;
+  int ReplayStateSize() const;
 
   static const std::vector<std::string>& Placements();
 

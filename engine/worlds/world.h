@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/core/dataset.h"
+#include "engine/core/error.h"
 
 namespace recon::worlds {
 
@@ -77,6 +78,19 @@ class World {
   /// each test scenario (the paper's BinTransfer metric: action MSE against the expert) instead
   /// of by the outcome of its own rollout.
   virtual bool ScoresActions() const { return false; }
+
+  /// What it takes to draw the current step again later (a rollout played back frame by frame
+  /// beside another on the same scene), as a vector of a fixed size per world configuration;
+  /// empty when the world has no replay (the default).
+  virtual std::vector<double> ReplayState() const { return {}; }
+  /// Puts the world in a state ReplayState() returned, for drawing only (camera image, object
+  /// positions): whatever the world does not need to draw (velocities, the controller, a grasp)
+  /// is not restored, so Reset() before stepping again. UserError when the world has no replay,
+  /// or naming the expected and the actual size when `state` has the wrong size.
+  virtual void ShowReplayState(const std::vector<double>& state) {
+    (void)state;
+    throw UserError("the " + Name() + " world has no replay: its rollouts cannot be shown again");
+  }
 };
 
 /// Records one demonstration per seed: Reset(seed), then up to EpisodeLength() steps of

@@ -296,6 +296,9 @@ TEST_F(SessionCliTest, TrainEvalAndReport) {
     EXPECT_EQ(rollout["per_scenario"].size(), static_cast<size_t>(kTests));
     ASSERT_TRUE(rollout["metric_mean"].is_number()) << rollout.dump();
     EXPECT_TRUE(std::isfinite(rollout["metric_mean"].get<double>()));
+    // Dynamic 2D has no replay (session_replay_cli_test.cc covers a world that has one).
+    EXPECT_FALSE(rollout.contains("replay")) << rollout.dump();
+    EXPECT_FALSE(fs::exists(session / "rollouts" / (std::string(method) + ".replay.h5")));
   }
   const json info = Info(session);
   for (const char* method : {"baseline", "recon"}) {

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "engine/calib/calibration.h"
+#include "engine/store/rollout_replay.h"
 #include "engine/store/session.h"
 #include "tests/support/golden_image.h"
 #include "tests/support/run_command.h"
@@ -20,9 +21,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Runs recon-studio with `args`; returns exit code and output.
-testing::CommandResult RunStudio(const std::string& args) {
-  return testing::RunCommand(std::string(RECON_STUDIO) + " " + args);
+/// Runs recon-studio with `args`, its list of recent sessions kept under `config` (never the
+/// user's own ~/.config); returns exit code and output.
+testing::CommandResult RunStudio(const std::string& args,
+                                 const fs::path& config = fs::temp_directory_path() /
+                                                          ("recon-studio-config-" +
+                                                           std::to_string(getpid()))) {
+  return testing::RunCommand("XDG_CONFIG_HOME=" + config.string() + " " +
+                             std::string(RECON_STUDIO) + " " + args);
 }
 
 TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
@@ -60,10 +66,19 @@ TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
     EXPECT_TRUE(fs::exists(fs::path(session) / "rollouts" / (std::string(method) + ".json")));
   }
   EXPECT_TRUE(fs::exists(fs::path(session) / "report" / "report.html"));
+  // The rollouts ran on --rollout-tests scenes, and both methods kept them for playback.
+  for (const char* method : {"baseline", "recon"}) {
+    const store::RolloutReplay replay = store::ReadRolloutReplay(
+        (fs::path(session) / "rollouts" / (std::string(method) + ".replay.h5")).string());
+    EXPECT_EQ(replay.scenarios.size(), 3u) << method;
+  }
+  // The keyboard take was discarded: none of the demonstrations is a teleop one.
+  for (const store::EpisodeEntry& e : s.demos()) EXPECT_EQ(e.meta.source, "scripted-teleop");
 
   // A screenshot of every step, each a full window with content.
-  for (const char* name : {"01_cell", "02_beacons", "03_calibrate", "04_record", "05_play",
-                           "06_train", "07_rollouts", "08_report"}) {
+  for (const char* name :
+       {"01_cell", "02_beacons", "03_calibrate", "04_record", "04_record_keyboard", "05_play",
+        "06_train", "07_rollouts", "07_rollouts_end", "07_rollouts_playing", "08_report"}) {
     const std::string path = screens + "/" + name + ".png";
     ASSERT_TRUE(fs::exists(path)) << path;
     const RgbImage image = testing::ReadPng(path);
@@ -81,9 +96,9 @@ TEST(StudioSessionTest, AWholeSessionThroughTheGuiEndsInAReport) {
 TEST(StudioSessionTest, BadArgumentsAndScriptsAreClearErrors) {
   const fs::path dir = fs::temp_directory_path() / ("recon-studio-bad-" + std::to_string(getpid()));
   fs::remove_all(dir);
-  testing::CommandResult r = RunStudio("--headless --frames 1");
+  testing::CommandResult r = RunStudio("--headless --frames 1 --width 0");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("give the session folder"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--width"), std::string::npos) << r.output;
   r = RunStudio("--headless --frames 1 --world dynamic2d --session " + (dir / "s").string());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("teaches in the tabletop cell"), std::string::npos) << r.output;
@@ -98,6 +113,26 @@ TEST(StudioSessionTest, BadArgumentsAndScriptsAreClearErrors) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("bad.script:2: no widget labelled 'Recrod##step'"), std::string::npos)
       << r.output;
+  fs::remove_all(dir);
+}
+
+// Without --session the studio starts at the session picker, offering what was opened before.
+TEST(StudioSessionTest, WithoutASessionItStartsAtThePickerWithTheRecentOnes) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("recon-studio-pick-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  const fs::path config = dir / "config";
+  testing::CommandResult r =
+      RunStudio("--headless --frames 2 --session " + (dir / "toast").string(), config);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunStudio("--headless --frames 3 --screenshot " + (dir / "picker.png").string(), config);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("recon-studio: no session open"), std::string::npos) << r.output;
+  std::ifstream in(config / "recon-studio" / "recent.json");
+  const std::string recent((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(recent.find((dir / "toast").string()), std::string::npos) << recent;
+  const RgbImage picker = testing::ReadPng((dir / "picker.png").string());
+  EXPECT_EQ(picker.width, 1280);
   fs::remove_all(dir);
 }
 

@@ -141,3 +141,147 @@ TEST(StudioCommandTest, AScriptDrivesTheStudioAndNamesItsMistakes) {
 
 }  // namespace
 }  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+TEST(StudioCommandTest, TheTeleopIsChosenOnTheRecordScreenAndAMissingGamepadSaysWhy) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("[ ] Keyboard##teleop");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<SetTeleopMode>(commands[0]));
+  EXPECT_EQ(std::get<SetTeleopMode>(commands[0]).mode, "keyboard");
+  try {
+    harness.driver().Click("[ ] Gamepad##teleop");
+    FAIL() << "the gamepad is not connected; its button must be disabled";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("disabled"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(harness.Commands().empty());
+}
+
+TEST(StudioCommandTest, TheSessionMenuAndPickerOpenSessions) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("Session");
+  harness.driver().Click("Open or create...");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<ShowSessionPicker>(commands[0]));
+  EXPECT_TRUE(std::get<ShowSessionPicker>(commands[0]).show);
+
+  // A recent session from the menu.
+  harness.driver().WaitFrames(2);
+  harness.driver().Click("Session");
+  harness.driver().Click("/home/lab/sessions/cups##recent-menu");
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<OpenSession>(commands[0]));
+  EXPECT_EQ(std::get<OpenSession>(commands[0]).dir, "/home/lab/sessions/cups");
+
+  // The picker: type a folder and open it.
+  StudioSnapshot picking = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  picking.picking_session = true;
+  harness.Show(picking);
+  EXPECT_THROW(harness.driver().Click("Open or create"), UserError);  // nothing typed yet
+  harness.driver().Click("##session-folder");
+  harness.driver().Type("/tmp/new-session");
+  harness.driver().WaitFrames(2);
+  harness.driver().Click("Open or create");
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<OpenSession>(commands[0]));
+  EXPECT_EQ(std::get<OpenSession>(commands[0]).dir, "/tmp/new-session");
+  harness.driver().Click("Cancel##session-picker");
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_FALSE(std::get<ShowSessionPicker>(commands[0]).show);
+}
+
+TEST(StudioCommandTest, PlayDataCanBeStoppedWhileItRecords) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kPlay);
+  s.recording_play = true;
+  s.play_recorded = 12;
+  s.play_target = 30;
+  harness.Show(s);
+  harness.driver().Click("Stop");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<StopPlay>(commands[0]));
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  s.teleop = "keyboard";
+  s.recording = true;
+  harness.Show(s);
+  harness.driver().RunScript("hold right 0.05\nhold pageup 0.05\npress space\npress enter\n");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  bool right = false, up = false, grip = false, stop = false;
+  for (const StudioCommand& c : commands) {
+    if (const auto* input = std::get_if<TeleopInput>(&c)) {
+      right |= input->screen_right == 1 && input->screen_up == 0 && input->raise == 0;
+      up |= input->raise == 1 && input->screen_right == 0;
+      grip |= input->close_gripper;
+    }
+    stop |= std::holds_alternative<StopRecording>(c);
+  }
+  EXPECT_TRUE(right) << "the right arrow";
+  EXPECT_TRUE(up) << "page up";
+  EXPECT_TRUE(grip) << "space";
+  EXPECT_TRUE(stop) << "enter";
+  // The same keys with the scripted teacher recording send nothing.
+  s.teleop = "scripted";
+  harness.Show(s);
+  harness.Commands();
+  harness.driver().RunScript("hold right 0.05\npress space\n");
+  EXPECT_TRUE(harness.Commands().empty());
+  EXPECT_THROW(harness.driver().RunScript("hold right\n"), UserError);
+  EXPECT_THROW(harness.driver().RunScript("hold sideways 1\n"), UserError);
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+TEST(StudioCommandTest, RolloutPlaybackStepsScenesAndFrames) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kDone, teach::Step::kRollouts));
+  harness.driver().RunScript(
+      "click Scene >\nclick < Scene\nclick >##step\nclick <##step-back\nclick |<\nclick >|\n"
+      "click Play\n");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 7u);
+  const auto frame = [&](size_t i) { return std::get<ShowRolloutFrame>(commands.at(i)); };
+  EXPECT_EQ(frame(0).scenario, 3);  // the snapshot shows scene index 2, step 42 of 201
+  EXPECT_EQ(frame(0).frame, 0);
+  EXPECT_EQ(frame(1).scenario, 1);
+  EXPECT_EQ(frame(2).scenario, 2);
+  EXPECT_EQ(frame(2).frame, 43);
+  EXPECT_EQ(frame(3).frame, 41);
+  EXPECT_EQ(frame(4).frame, 0);
+  EXPECT_EQ(frame(5).frame, 200);
+  ASSERT_TRUE(std::holds_alternative<PlayRollouts>(commands[6]));
+  EXPECT_TRUE(std::get<PlayRollouts>(commands[6]).playing);
+  // While rollouts run, the playback waits.
+  StudioSnapshot running = SnapshotAt(Progress::kDone, teach::Step::kRollouts);
+  running.rollouts_running = true;
+  harness.Show(running);
+  harness.Commands();
+  EXPECT_THROW(harness.driver().Click("Play"), UserError);
+}
+
+}  // namespace
+}  // namespace recon::ui

@@ -81,7 +81,8 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
         {"camera", "simulated", "top camera, 64x64 RGB (MuJoCo, EGL)", true, 30.0, ""},
         {"arm", "simulated", "UR5 in MuJoCo, 10 Hz joint-velocity control", true, 10.0, ""},
         {"beacons", "simulated", "DWM1001 lec lines through the serial parser", true, 10.0, ""},
-        {"teleop", "scripted", "the world's scripted expert", true, 0.0, ""}};
+        {"teleop", "keyboard", "arrows move the arm", true, 0.0, ""},
+        {"teleop", "gamepad", "none found", false, 0.0, ""}};
     s.camera = SyntheticCamera();
     s.camera_frame = 1;
     s.objects = {{"plate", 110, 60}, {"bowl", 45, 35}, {"toast", 49, 86}};
@@ -106,7 +107,12 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
                                 0.035, 0.024, 0.019, 0.023, 0.039, 0.006};
     s.calibration.inlier.assign(12, true);
   }
-  s.teleop = "scripted teleop";
+  s.teleop = "scripted";
+  s.teleop_choices = {{"scripted", "Scripted", true, ""},
+                      {"keyboard", "Keyboard", true, ""},
+                      {"gamepad", "Gamepad", false, "no gamepad connected"}};
+  s.grip_m = {0.33f, 0.0f, 0.25f};
+  s.recent_sessions = {"/home/lab/sessions/toast", "/home/lab/sessions/cups"};
   if (p >= 4) {
     for (int i = 0; i < 4; ++i) {
       s.episodes.push_back(
@@ -156,6 +162,18 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
                    0,
                    0,
                    {}}};
+    // The playback of test scene 3, step 42 of 201.
+    for (RolloutView& r : s.rollouts) {
+      r.has_replay = true;
+      r.scenario = 2;
+      r.frame = 42;
+      r.frames = 201;
+      r.scenario_seed = 1234567;
+      r.scenario_metric = r.method == "baseline" ? 0.412 : 0.031;
+      r.scenario_succeeded = r.method == "recon";
+      r.frame_image = SyntheticCamera();
+      r.frame_id = 1;
+    }
     s.report_path = "sessions/toast/report/report.html";
   }
   s.status = facts.session_open ? "Session sessions/toast: tabletop, simulated cell." : "";

@@ -15,6 +15,10 @@ struct FrameInput {
   float wheel = 0;
   std::vector<unsigned> characters;  ///< typed text (Unicode code points)
   std::vector<int> keys_pressed;     ///< ImGuiKey values pressed this frame (released next frame)
+  std::vector<int> keys_down;        ///< ImGuiKey values held down this frame
+  // ImGui 1.86 names only the letters A, C, V, X, Y and Z (for text shortcuts). A window also puts
+  // every letter in both lists as its upper-case ASCII code ('W' = 87), an io.KeysDown slot that
+  // no ImGuiKey uses, so a teleop can ask ImGui::IsKeyDown('W').
   bool ctrl = false, shift = false, alt = false;
   double delta_s = 1.0 / 60.0;
 };

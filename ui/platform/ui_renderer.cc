@@ -4,6 +4,9 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <string>
+#include <vector>
+
 #include "engine/core/error.h"
 #include "ui/platform/studio_font.h"
 #include "ui/platform/studio_style.h"
@@ -64,8 +67,11 @@ void UiRenderer::NewFrame(const FrameInput& input) {
   io.KeyShift = input.shift;
   io.KeyAlt = input.alt;
   for (bool& down : io.KeysDown) down = false;
-  for (int key : input.keys_pressed) {
-    if (key >= 0 && key < static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) io.KeysDown[key] = true;
+  // A key pressed this frame is down for one frame, a held one for as long as it is held.
+  for (const std::vector<int>* keys : {&input.keys_pressed, &input.keys_down}) {
+    for (int key : *keys) {
+      if (key >= 0 && key < static_cast<int>(IM_ARRAYSIZE(io.KeysDown))) io.KeysDown[key] = true;
+    }
   }
   for (unsigned c : input.characters) io.AddInputCharacter(c);
   ImGui_ImplOpenGL3_NewFrame();
@@ -75,11 +81,26 @@ void UiRenderer::NewFrame(const FrameInput& input) {
 void UiRenderer::Render() {
   ImGui::SetCurrentContext(context_);
   ImGui::Render();
+  DrawLastFrame();
+}
+
+void UiRenderer::DrawLastFrame() {
+  ImGui::SetCurrentContext(context_);
   glViewport(0, 0, options_.width, options_.height);
   const ImVec4 clear = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
   glClearColor(clear.x, clear.y, clear.z, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  // Null before the first Render and between NewFrame and Render.
+  if (ImDrawData* draw_data = ImGui::GetDrawData()) ImGui_ImplOpenGL3_RenderDrawData(draw_data);
+}
+
+void UiRenderer::Resize(int width, int height) {
+  if (width <= 0 || height <= 0) {
+    throw UserError("the studio's frame size must be positive, not " + std::to_string(width) + "x" +
+                    std::to_string(height));
+  }
+  options_.width = width;
+  options_.height = height;
 }
 
 }  // namespace recon::ui

@@ -29,6 +29,12 @@ class UiRenderer {
   void NewFrame(const FrameInput& input);
   /// Finishes the frame and draws it into the bound framebuffer (cleared first).
   void Render();
+  /// Draws the last rendered frame again into the bound framebuffer, until the next NewFrame: a
+  /// window's back buffer is undefined once swapped, so its screenshots are drawn anew.
+  void DrawLastFrame();
+  /// The size of the frames from the next NewFrame on, in framebuffer pixels (a resized window).
+  /// Throws UserError unless both are positive.
+  void Resize(int width, int height);
 
   int width() const { return options_.width; }
   int height() const { return options_.height; }

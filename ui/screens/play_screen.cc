@@ -14,14 +14,41 @@ void DrawPlayScreen(const ScreenContext& context) {
       "beacon) pairs teach the features where the objects are, without any demonstration. "
       "Optional; it helps RECON most when demonstrations are few.");
   context.textures.camera.Update(s.camera, s.camera_frame);
+  ImGui::BeginGroup();
   CameraView("camera##play", context.textures.camera, 420.0f, s.beacons, {});
-  ImGui::Text("Play samples recorded: %d", s.play_samples);
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::Text("Play samples in the session: %d", s.play_samples);
   const bool blocked = Blocked(s, teach::Step::kPlay);
   if (s.recording_play) {
-    StatusText(Status::kBusy, "Recording play data...");
+    StatusText(Status::kBusy,
+               Format("Recording play data: %d of %d", s.play_recorded, s.play_target));
+    ImGui::ProgressBar(
+        s.play_target > 0 ? static_cast<float>(s.play_recorded) / s.play_target : 0.0f,
+        ImVec2(300, 0));
+    if (Button("Stop")) context.commands.Push(StopPlay{});
   } else if (Button("Record 30 play samples", !blocked, WhyBlocked(s, teach::Step::kPlay))) {
     context.commands.Push(RecordPlay{30});
   }
+  // The last sample as the policy's camera saw it, with the beacon's reading: what the feature
+  // net learns from.
+  if (s.play_image.width > 0) {
+    ImGui::Spacing();
+    ImGui::TextUnformatted("Last sample (the policy's camera):");
+    context.textures.play.Update(s.play_image, s.play_image_frame);
+    if (context.textures.play.id() != nullptr) {
+      ImGui::Image(context.textures.play.id(), ImVec2(256, 256));
+    }
+    if (!s.play_reading.empty()) {
+      std::string reading;
+      for (size_t i = 0; i < s.play_reading.size(); ++i) {
+        reading += Format("%s%.3f", i ? ", " : "", s.play_reading[i]);
+      }
+      ImGui::Text("Beacon: %s m", reading.c_str());
+    }
+  }
+  ImGui::EndGroup();
 }
 
 }  // namespace recon::ui

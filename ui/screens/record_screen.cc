@@ -6,15 +6,68 @@
 
 namespace recon::ui {
 
+namespace {
+
+constexpr float kCameraWidth = 420.0f;
+
+bool KeyDown(ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)); }
+bool KeyPressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
+
+/// The keyboard teleop: while a demonstration records, the arrows drive the arm as it moves on
+/// screen, Page Up / Page Down raise and lower it, Space opens or closes the gripper and Enter
+/// keeps the demonstration. Sends the controller a TeleopInput when the keys change.
+void ReadTeleopKeys(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  if (!s.recording || s.teleop != "keyboard" || ImGui::GetIO().WantTextInput) return;
+  TeleopInput input;
+  input.screen_right =
+      static_cast<float>(KeyDown(ImGuiKey_RightArrow) - KeyDown(ImGuiKey_LeftArrow));
+  input.screen_up = static_cast<float>(KeyDown(ImGuiKey_UpArrow) - KeyDown(ImGuiKey_DownArrow));
+  input.raise = static_cast<float>(KeyDown(ImGuiKey_PageUp) - KeyDown(ImGuiKey_PageDown));
+  input.close_gripper = s.teleop_input.close_gripper != KeyPressed(ImGuiKey_Space);
+  if (input != s.teleop_input) context.commands.Push(input);
+  if (KeyPressed(ImGuiKey_Enter) || KeyPressed(ImGuiKey_KeyPadEnter)) {
+    context.commands.Push(StopRecording{});
+  }
+}
+
+void DrawTeleopChoice(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  ImGui::TextUnformatted("Teleop:");
+  for (const TeleopChoice& choice : s.teleop_choices) {
+    ImGui::SameLine();
+    const bool enabled = choice.available && !s.recording;
+    const std::string label = (choice.mode == s.teleop ? "[x] " : "[ ] ") + choice.label;
+    if (Button((label + "##teleop").c_str(), enabled,
+               choice.available ? "finish the recording first" : choice.why_not)) {
+      context.commands.Push(SetTeleopMode{choice.mode});
+    }
+  }
+  if (s.teleop == "keyboard") {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kCameraWidth);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped(
+        "Arrows move the arm as on screen, Page Up/Down raise and lower it, Space opens or "
+        "closes the gripper, Enter keeps the demonstration.");
+    ImGui::PopStyleColor();
+    ImGui::PopTextWrapPos();
+  }
+}
+
+}  // namespace
+
 void DrawRecordScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Record", teach::StepPurpose(teach::Step::kRecord));
   const bool blocked = Blocked(s, teach::Step::kRecord) && !s.recording;
   const std::string why = WhyBlocked(s, teach::Step::kRecord);
+  ReadTeleopKeys(context);
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
-  CameraView("camera##record", context.textures.camera, 420.0f, s.beacons, {});
-  ImGui::Text("Teleop: %s", s.teleop.empty() ? "none" : s.teleop.c_str());
+  CameraView("camera##record", context.textures.camera, kCameraWidth, s.beacons, {});
+  DrawTeleopChoice(context);
+  ImGui::Text("Grip at (%.2f, %.2f, %.2f) m, gripper %s", s.grip_m[0], s.grip_m[1], s.grip_m[2],
+              s.gripper_closed ? "closed" : "open");
   ImGui::Text("Teacher's time so far: %.1f s", s.teacher_seconds);
   ImGui::EndGroup();
   ImGui::SameLine();

@@ -1,23 +1,106 @@
 #include <imgui.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "ui/screens/screens.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
+
+namespace {
+
+/// Every method's rollout of the same test scene, side by side, with the controls to step
+/// through it or play it at the control rate.
+void DrawPlayback(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  std::vector<const RolloutView*> shown;
+  for (const RolloutView& r : s.rollouts) {
+    if (r.has_replay) shown.push_back(&r);
+  }
+  if (shown.empty()) return;
+  const RolloutView& first = *shown.front();
+  const int scenario = first.scenario, frame = first.frame;
+  int frames = 0;
+  for (const RolloutView* r : shown) frames = std::max(frames, r->frames);
+  const bool idle = !s.rollouts_running;
+  ImGui::Spacing();
+  ImGui::Separator();
+  ImGui::Text("Playback: test scene %d of %d (seed %llu), beacons removed", scenario + 1,
+              first.tests, static_cast<unsigned long long>(first.scenario_seed));
+  if (Button("< Scene", idle && scenario > 0)) {
+    context.commands.Push(ShowRolloutFrame{scenario - 1, 0});
+  }
+  ImGui::SameLine();
+  if (Button("Scene >", idle && scenario + 1 < first.tests)) {
+    context.commands.Push(ShowRolloutFrame{scenario + 1, 0});
+  }
+  ImGui::SameLine(0, 24);
+  if (Button("|<", idle)) context.commands.Push(ShowRolloutFrame{scenario, 0});
+  ImGui::SameLine();
+  if (Button("<##step-back", idle && frame > 0)) {
+    context.commands.Push(ShowRolloutFrame{scenario, frame - 1});
+  }
+  ImGui::SameLine();
+  if (s.rollouts_playing) {
+    if (Button("Pause")) context.commands.Push(PlayRollouts{false});
+  } else if (Button("Play", idle)) {
+    context.commands.Push(PlayRollouts{true});
+  }
+  ImGui::SameLine();
+  if (Button(">##step", idle && frame + 1 < frames)) {
+    context.commands.Push(ShowRolloutFrame{scenario, frame + 1});
+  }
+  ImGui::SameLine();
+  if (Button(">|", idle)) context.commands.Push(ShowRolloutFrame{scenario, frames - 1});
+  ImGui::SameLine(0, 24);
+  int slider = frame;
+  ImGui::SetNextItemWidth(300);
+  if (ImGui::SliderInt("##frame", &slider, 0, std::max(0, frames - 1), "step %d") && idle) {
+    context.commands.Push(ShowRolloutFrame{scenario, slider});
+  }
+  ImGui::SameLine();
+  ImGui::Text("%.1f s", 0.1 * frame);
+
+  ImageTexture* textures[2] = {&context.textures.rollout, &context.textures.rollout_other};
+  const float width = 480.0f;
+  for (size_t i = 0; i < shown.size() && i < 2; ++i) {
+    const RolloutView& r = *shown[i];
+    if (i > 0) ImGui::SameLine(0, 16);
+    ImGui::BeginGroup();
+    textures[i]->Update(r.frame_image, r.frame_id);
+    if (textures[i]->id() != nullptr && textures[i]->width() > 0) {
+      ImGui::Image(textures[i]->id(),
+                   ImVec2(width, width * textures[i]->height() / textures[i]->width()));
+    }
+    StatusText(r.has_success ? (r.scenario_succeeded ? Status::kOk : Status::kError) : Status::kOff,
+               Format("%s: %s %.3f%s", r.label.c_str(), r.metric_name.c_str(), r.scenario_metric,
+                      r.has_success ? (r.scenario_succeeded ? ", success" : ", failed") : ""));
+    ImGui::EndGroup();
+  }
+}
+
+}  // namespace
 
 void DrawRolloutsScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Rollouts", teach::StepPurpose(teach::Step::kRollouts));
   if (s.rollouts_running) {
     StatusText(Status::kBusy, "Rolling out...");
-  } else if (Button("Run rollouts on 10 new scenes", !Blocked(s, teach::Step::kRollouts),
-                    WhyBlocked(s, teach::Step::kRollouts))) {
-    context.commands.Push(RunRollouts{10});
+  } else {
+    if (Button("Run rollouts", !Blocked(s, teach::Step::kRollouts),
+               WhyBlocked(s, teach::Step::kRollouts))) {
+      context.commands.Push(RunRollouts{s.rollout_tests});
+    }
+    ImGui::SameLine();
+    ImGui::Text("on %d new scenes, beacons removed, every trained method on the same ones",
+                s.rollout_tests);
   }
   ImGui::Spacing();
   if (ImGui::BeginTable("rollouts", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("Policy (beacons removed)");
-    ImGui::TableSetupColumn("Metric");
+    const std::string metric = s.rollouts.empty() ? "Metric" : s.rollouts[0].metric_name;
+    ImGui::TableSetupColumn(metric.c_str());
     ImGui::TableSetupColumn("Success");
     ImGui::TableSetupColumn("Scenes");
     ImGui::TableHeadersRow();
@@ -26,7 +109,7 @@ void DrawRolloutsScreen(const ScreenContext& context) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(r.label.c_str());
       ImGui::TableNextColumn();
-      ImGui::Text("%.3f ± %.3f (%s)", r.metric_mean, r.metric_sem, r.metric_name.c_str());
+      ImGui::Text("%.3f ± %.3f", r.metric_mean, r.metric_sem);
       ImGui::TableNextColumn();
       if (r.has_success) {
         ImGui::Text("%.0f%%", 100.0 * r.success_rate);
@@ -39,6 +122,7 @@ void DrawRolloutsScreen(const ScreenContext& context) {
     ImGui::EndTable();
   }
   if (s.rollouts.empty()) ImGui::TextDisabled("No rollouts yet.");
+  DrawPlayback(context);
 }
 
 }  // namespace recon::ui

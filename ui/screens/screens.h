@@ -1,15 +1,21 @@
 #pragma once
 
+#include <array>
+
 #include "ui/studio/studio_commands.h"
 #include "ui/studio/studio_snapshot.h"
 #include "ui/widgets/image_texture.h"
 
 namespace recon::ui {
 
-/// GL textures the screens draw with; owned by the UI thread for the window's life.
+/// GL textures the screens draw with, and what the teacher is typing; owned by the UI thread for
+/// the window's life (per window, so two studios in one process never share a text field).
 struct StudioTextures {
+  std::array<char, 1024> session_folder{};  ///< the session picker's folder field
   ImageTexture camera;
+  ImageTexture play;
   ImageTexture rollout;
+  ImageTexture rollout_other;  ///< the second method's frame, side by side
 };
 
 /// What every screen gets: the frame's snapshot (read only) and where to put requests.
@@ -29,6 +35,9 @@ void DrawPlayScreen(const ScreenContext& context);
 void DrawTrainScreen(const ScreenContext& context);
 void DrawRolloutsScreen(const ScreenContext& context);
 void DrawReportScreen(const ScreenContext& context);
+/// The Session menu of the menu bar (open, recent sessions) and the session picker page.
+void DrawSessionMenu(const ScreenContext& context);
+void DrawSessionPicker(const ScreenContext& context);
 
 /// The status of `step` in the snapshot.
 const teach::StepStatus& StatusOf(const StudioSnapshot& snapshot, teach::Step step);

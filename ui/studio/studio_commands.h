@@ -46,19 +46,52 @@ struct CancelTraining {};
 struct RunRollouts {
   int tests = 10;
 };
+/// Shows frame `frame` of test scene `scenario` in the rollout playback (every method's rollout
+/// of that scene, side by side) and pauses there.
 struct ShowRolloutFrame {
-  std::string method;
   int scenario = 0;
   int frame = 0;
 };
 struct WriteReport {};
 struct DismissErrors {};
+/// The teleop that drives the next demonstration: "scripted" (the simulated teacher), "keyboard"
+/// or "gamepad".
+struct SetTeleopMode {
+  std::string mode;
+};
+/// What the teacher's keys (or sticks) ask for now, relative to the camera view as they see it:
+/// each axis -1..1. The controller turns it into a velocity of the grip point in the table frame.
+struct TeleopInput {
+  float screen_right = 0;  ///< + moves the arm towards the view's right edge
+  float screen_up = 0;     ///< + moves it towards the view's top edge
+  float raise = 0;         ///< + lifts the tool, - lowers it
+  bool close_gripper = false;
+  bool operator==(const TeleopInput& o) const {
+    return screen_right == o.screen_right && screen_up == o.screen_up && raise == o.raise &&
+           close_gripper == o.close_gripper;
+  }
+  bool operator!=(const TeleopInput& o) const { return !(*this == o); }
+};
+struct StopPlay {};
+/// Plays the rollouts back (advancing ShowRolloutFrame's frame at the control rate) or pauses.
+struct PlayRollouts {
+  bool playing = true;
+};
+/// Shows the session picker (folder field, recent sessions) instead of the step's screen.
+struct ShowSessionPicker {
+  bool show = true;
+};
+/// Opens the session in `dir`, or creates a new one there; the current one is closed first.
+struct OpenSession {
+  std::string dir;
+};
 
 using StudioCommand =
     std::variant<OpenStep, AssignBeacon, StartCalibration, CancelCalibration, StartRecording,
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, ShowRolloutFrame,
-                 WriteReport, DismissErrors>;
+                 WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay, PlayRollouts,
+                 ShowSessionPicker, OpenSession>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

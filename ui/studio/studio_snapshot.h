@@ -8,6 +8,7 @@
 
 #include "engine/core/image.h"
 #include "engine/teach/workflow.h"
+#include "ui/studio/studio_commands.h"
 
 namespace recon::ui {
 
@@ -39,6 +40,14 @@ struct BeaconView {
   double rate_hz = 0;           ///< updates per second
   double dropout_fraction = 0;  ///< missed updates over the last seconds
   double noise_m = 0;           ///< spread of the readings while the beacon is still
+};
+
+/// A teleop the Record screen offers, and whether it can be used now.
+struct TeleopChoice {
+  std::string mode;   ///< "scripted", "keyboard", "gamepad"
+  std::string label;  ///< "Scripted teacher", "Keyboard", "Gamepad"
+  bool available = true;
+  std::string why_not;  ///< e.g. "no gamepad connected"
 };
 
 /// A committed demonstration as the Record screen lists it.
@@ -85,9 +94,15 @@ struct RolloutView {
   bool has_success = false;
   double success_rate = 0;
   int tests = 0;
-  int scenario = 0;  ///< which test scenario the playback shows
+  // The playback of one test scene (all methods show the same scene and step).
+  bool has_replay = false;  ///< rollouts/<method>.replay.h5 exists and opened
+  int scenario = 0;         ///< which test scene the playback shows
   int frame = 0, frames = 0;
-  RgbImage frame_image;  ///< the playback's current frame
+  uint64_t scenario_seed = 0;
+  double scenario_metric = 0;
+  bool scenario_succeeded = false;
+  RgbImage frame_image;   ///< the playback's current frame
+  uint64_t frame_id = 0;  ///< changes whenever frame_image does
 };
 
 /// Everything the studio's screens draw, copied from the engine side once per frame under a
@@ -96,6 +111,8 @@ struct RolloutView {
 struct StudioSnapshot {
   // Session and workflow.
   bool session_open = false;
+  bool picking_session = false;              ///< the session picker replaces the step's screen
+  std::vector<std::string> recent_sessions;  ///< most recent first
   std::string session_dir;
   std::string world;
   std::vector<teach::StepStatus> steps;  ///< teach::EvaluateWorkflow of the facts
@@ -116,15 +133,28 @@ struct StudioSnapshot {
   // Recording.
   bool recording = false;
   int recording_samples = 0;
-  std::string teleop;  ///< "scripted teleop", "keyboard", "gamepad"
+  std::string teleop = "scripted";  ///< the mode: "scripted", "keyboard", "gamepad"
+  std::vector<TeleopChoice> teleop_choices;
+  TeleopInput teleop_input;       ///< what the keys ask for now (the Record screen sends changes)
+  std::array<float, 3> grip_m{};  ///< the arm's grip point in the table frame
+  std::array<float, 2> grip_pixel{};  ///< and where the camera view shows it
+  bool gripper_closed = false;
   std::vector<EpisodeView> episodes;
   double teacher_seconds = 0;  ///< demonstrations + play + beacon placements so far
-  int play_samples = 0;
+
+  // Play data.
+  int play_samples = 0;  ///< committed
   bool recording_play = false;
+  int play_recorded = 0, play_target = 0;  ///< of the running request
+  RgbImage play_image;                     ///< the latest play sample's camera image
+  uint64_t play_image_frame = 0;
+  std::vector<float> play_reading;  ///< and its beacon reading
 
   std::vector<TrainingView> training;
   std::vector<RolloutView> rollouts;
   bool rollouts_running = false;
+  int rollout_tests = 10;         ///< scenes per rollout run (recon-studio --rollout-tests)
+  bool rollouts_playing = false;  ///< the playback advances by itself (10 steps a second)
 
   std::string report_path;  ///< empty until a report was written
 

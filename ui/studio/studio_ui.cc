@@ -15,6 +15,9 @@ constexpr ImGuiWindowFlags kPanel = ImGuiWindowFlags_NoDecoration | ImGuiWindowF
                                     ImGuiWindowFlags_NoBringToFrontOnFocus;
 
 void DrawScreen(const ScreenContext& context) {
+  if (context.snapshot.picking_session || !context.snapshot.session_open) {
+    return DrawSessionPicker(context);
+  }
   switch (context.snapshot.current_step) {
     case teach::Step::kCell:
       return DrawCellScreen(context);
@@ -40,9 +43,19 @@ void DrawScreen(const ScreenContext& context) {
 void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTextures& textures) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   const ScreenContext context{snapshot, commands, textures};
-  const float body = display.y - kStatusHeight;
+  float top = 0;
+  if (ImGui::BeginMainMenuBar()) {
+    DrawSessionMenu(context);
+    if (snapshot.session_open) {
+      ImGui::SameLine(0, 30);
+      ImGui::TextDisabled("%s", snapshot.session_dir.c_str());
+    }
+    top = ImGui::GetWindowSize().y;
+    ImGui::EndMainMenuBar();
+  }
+  const float body = display.y - kStatusHeight - top;
 
-  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowPos(ImVec2(0, top));
   ImGui::SetNextWindowSize(ImVec2(kSidebarWidth, body));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.93f, 0.94f, 0.955f, 1.0f));
   ImGui::Begin("Steps", nullptr, kPanel);
@@ -50,7 +63,7 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::End();
   ImGui::PopStyleColor();
 
-  ImGui::SetNextWindowPos(ImVec2(kSidebarWidth, 0));
+  ImGui::SetNextWindowPos(ImVec2(kSidebarWidth, top));
   ImGui::SetNextWindowSize(ImVec2(display.x - kSidebarWidth, body));
   ImGui::Begin("Screen", nullptr, kPanel);
   if (!snapshot.errors.empty()) {
@@ -61,7 +74,7 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   DrawScreen(context);
   ImGui::End();
 
-  ImGui::SetNextWindowPos(ImVec2(0, body));
+  ImGui::SetNextWindowPos(ImVec2(0, top + body));
   ImGui::SetNextWindowSize(ImVec2(display.x, kStatusHeight));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(10, 5));
   ImGui::Begin("Status", nullptr, kPanel);

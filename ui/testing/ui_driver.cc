@@ -29,6 +29,10 @@ int KeyNamed(const std::string& name) {
   if (name == "space") return ImGuiKey_Space;
   if (name == "up") return ImGuiKey_UpArrow;
   if (name == "down") return ImGuiKey_DownArrow;
+  if (name == "left") return ImGuiKey_LeftArrow;
+  if (name == "right") return ImGuiKey_RightArrow;
+  if (name == "pageup") return ImGuiKey_PageUp;
+  if (name == "pagedown") return ImGuiKey_PageDown;
   return -1;
 }
 
@@ -101,6 +105,27 @@ void UiDriver::Press(int imgui_key) {
   WaitFrames(1);  // released
 }
 
+void UiDriver::Hold(int imgui_key, double seconds) {
+  FrameInput input;
+  input.mouse_x = mouse_x_;
+  input.mouse_y = mouse_y_;
+  input.keys_down.push_back(imgui_key);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  do {
+    Frame(input);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  } while (std::chrono::steady_clock::now() < until);
+  WaitFrames(1);  // released
+  if (settled_) {
+    // What the key sent must be taken in before the next line acts on its effect.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!settled_() && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    WaitFrames(2);
+  }
+}
+
 void UiDriver::WaitIdle(double timeout_s) {
   if (!idle_) throw UserError("wait-idle needs an idle check (none was set)");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
@@ -110,7 +135,9 @@ void UiDriver::WaitIdle(double timeout_s) {
       throw UserError("still busy after " + std::to_string(static_cast<int>(timeout_s)) + " s");
     }
     WaitFrames(1);
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    // About 30 frames a second while waiting: a software-rendered 1280 x 800 frame costs the
+    // same CPU the job being waited for needs (llvmpipe's threads are shared).
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
   }
   WaitFrames(3);  // let the screens show the finished state
 }
@@ -139,6 +166,18 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
         const int key = KeyNamed(argument);
         if (key < 0) throw UserError("unknown key '" + argument + "'");
         Press(key);
+      } else if (verb == "hold") {
+        // hold <key> <seconds>: a key held down, e.g. an arrow driving the arm.
+        const size_t gap = argument.find(' ');
+        const std::string name = argument.substr(0, gap);
+        const int key = KeyNamed(name);
+        if (key < 0) throw UserError("unknown key '" + name + "'");
+        if (gap == std::string::npos) throw UserError("hold needs seconds: hold <key> <seconds>");
+        const double seconds = std::stod(argument.substr(gap + 1));
+        if (!(seconds > 0 && seconds <= 600)) {
+          throw UserError("hold lasts 0-600 seconds, not " + argument.substr(gap + 1));
+        }
+        Hold(key, seconds);
       } else if (verb == "wait") {
         WaitFrames(std::stoi(argument));
       } else if (verb == "wait-idle") {
@@ -150,7 +189,8 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
                              ? argument
                              : (std::filesystem::path(screenshot_dir_) / path).string());
       } else {
-        throw UserError("unknown command '" + verb + "' (click, type, press, wait, screenshot)");
+        throw UserError("unknown command '" + verb +
+                        "' (click, type, press, hold, wait, wait-idle, screenshot)");
       }
     } catch (const UserError& e) {
       throw UserError(where + e.what());

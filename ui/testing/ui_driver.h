@@ -28,6 +28,9 @@ class UiDriver {
   void Type(const std::string& text);
   /// Presses and releases a key (an ImGuiKey value).
   void Press(int imgui_key);
+  /// Holds a key (an ImGuiKey value) down for `seconds` of wall time, drawing frames meanwhile,
+  /// then releases it: what a teacher does with an arrow key to drive the arm.
+  void Hold(int imgui_key, double seconds);
   /// Whether a widget labelled `label` was drawn in the last frame.
   bool Drawn(const std::string& label) const;
   RgbImage Screenshot() { return window_.Screenshot(); }
@@ -44,8 +47,9 @@ class UiDriver {
   void SetScreenshotDir(const std::string& dir) { screenshot_dir_ = dir; }
 
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
-  /// (enter, tab, escape, backspace, space, up, down), `wait <frames>`, `wait-idle [seconds]`,
-  /// `screenshot <file.png>`; `#` starts a comment. UserError naming the line number for
+  /// (enter, tab, escape, backspace, space, up, down, left, right, pageup, pagedown),
+  /// `hold <key> <seconds>`, `wait <frames>`, `wait-idle [seconds]`, `screenshot <file.png>`;
+  /// `#` starts a comment. UserError naming the line number for
   /// anything else.
   void RunScript(const std::string& script, const std::string& source_name = "script");
 

@@ -49,6 +49,25 @@ bool Selectable(const char* label, bool selected, bool enabled) {
   return clicked && enabled;
 }
 
+bool BeginMenu(const char* label, bool enabled) {
+  const bool open = ImGui::BeginMenu(label, enabled);
+  WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  return open;
+}
+
+bool MenuItem(const char* label, bool enabled) {
+  const bool clicked = ImGui::MenuItem(label, nullptr, false, enabled);
+  WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  return clicked && enabled;
+}
+
+bool InputText(const char* label, char* buffer, size_t size, float width) {
+  ImGui::SetNextItemWidth(width);
+  const bool entered = ImGui::InputText(label, buffer, size, ImGuiInputTextFlags_EnterReturnsTrue);
+  WidgetRegistry::ForThisThread().AddLastItem(label);
+  return entered;
+}
+
 void StatusText(Status status, const std::string& text) {
   const float size = ImGui::GetTextLineHeight();
   const ImVec2 at = ImGui::GetCursorScreenPos();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "engine/core/image.h"
@@ -14,6 +15,12 @@ namespace recon::ui {
 bool Button(const char* label, bool enabled = true, const std::string& why_disabled = "");
 /// A selectable row (a list entry, a step in the sidebar).
 bool Selectable(const char* label, bool selected, bool enabled = true);
+/// A menu of the menu bar (true while open: draw its items, then ImGui::EndMenu) and its items.
+bool BeginMenu(const char* label, bool enabled = true);
+bool MenuItem(const char* label, bool enabled = true);
+/// A one-line text field `width` pixels wide over `buffer`; true when Enter was pressed in it.
+/// Clicking it (or the driver's `click <label>`) focuses it for typing.
+bool InputText(const char* label, char* buffer, size_t size, float width);
 /// A small coloured status dot followed by text (green ok, amber warning, red error, grey off).
 enum class Status { kOk, kWarning, kError, kOff, kBusy };
 void StatusText(Status status, const std::string& text);

@@ -1,0 +1,246 @@
+// The studio's engine side without a window: the controller's cell thread with the real
+// simulated cell and real session files. Teleop from the keyboard, play data sample by sample,
+// switching sessions and the list of recent ones, and what the teacher sees of the devices.
+
+#include "app/studio/studio_controller.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <thread>
+
+#include "app/cli/session_world.h"
+#include "devices/render/mujoco_renderer.h"
+#include "engine/core/error.h"
+#include "engine/store/session.h"
+#include "engine/teach/recorder.h"
+#include "engine/teach/session_setup.h"
+#include "engine/worlds/world_factory.h"
+
+namespace recon::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class StudioControllerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("recon-controller-" + std::to_string(getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  StudioOptions Options(const std::string& session = "session") const {
+    StudioOptions options;
+    options.session_dir = session.empty() ? "" : (dir_ / session).string();
+    options.recent_sessions_file = (dir_ / "config" / "recent.json").string();
+    options.real_time = false;
+    return options;
+  }
+
+  /// Polls the controller's snapshots until `done` holds; fails the test after `timeout_s`.
+  static ui::StudioSnapshot WaitFor(const StudioController& controller,
+                                    const std::function<bool(const ui::StudioSnapshot&)>& done,
+                                    double timeout_s = 60) {
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    for (;;) {
+      ui::StudioSnapshot s = controller.Snapshot();
+      if (done(s) && controller.Settled()) return s;
+      if (std::chrono::steady_clock::now() > deadline) {
+        ADD_FAILURE() << "timed out; status: " << s.status;
+        return s;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  static void WaitSettled(const StudioController& controller) {
+    WaitFor(controller, [](const ui::StudioSnapshot&) { return true; });
+    // One more published snapshot after the last command.
+    std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  }
+
+  fs::path dir_;
+};
+
+// The arrows move the arm the way the camera view shows it, Page Down lowers it, Space closes
+// the gripper, and Stop keeps the demonstration as a keyboard-teleop episode.
+TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheCameraShowsIt) {
+  auto owner = std::make_unique<StudioController>(Options());
+  StudioController& controller = *owner;
+  controller.Push(ui::SetTeleopMode{"keyboard"});
+  controller.Push(ui::StartRecording{});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  ASSERT_EQ(s.teleop, "keyboard");
+  const std::array<float, 2> start_pixel = s.grip_pixel;
+  const std::array<float, 3> start = s.grip_m;
+
+  ui::TeleopInput right;
+  right.screen_right = 1;
+  controller.Push(right);
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.grip_pixel[0] > start_pixel[0] + 20; }, 20);
+  EXPECT_GT(s.grip_pixel[0], start_pixel[0] + 20);
+  EXPECT_NEAR(s.grip_pixel[1], start_pixel[1], 6) << "moving right must not drift up or down";
+  EXPECT_NEAR(s.grip_m[2], start[2], 0.01);
+
+  ui::TeleopInput lower;
+  lower.raise = -1;
+  lower.close_gripper = true;
+  controller.Push(lower);
+  const float before_lowering = s.grip_m[2];
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.grip_m[2] < before_lowering - 0.05; }, 20);
+  EXPECT_TRUE(s.gripper_closed);
+  EXPECT_TRUE(s.recording) << "a keyboard demonstration runs until the teacher stops it";
+
+  controller.Push(ui::TeleopInput{});
+  controller.Push(ui::StopRecording{});
+  s = WaitFor(controller, [](const auto& now) { return !now.recording && !now.episodes.empty(); });
+  ASSERT_EQ(s.episodes.size(), 1u);
+  EXPECT_FALSE(s.episodes[0].succeeded);
+  EXPECT_GT(s.episodes[0].samples, 5);
+  // The teleop mode cannot change under a running recording, and unknown ones are refused.
+  controller.Push(ui::SetTeleopMode{"gamepad"});
+  controller.Push(ui::SetTeleopMode{"joystick"});
+  s = WaitFor(controller, [](const auto& now) { return now.errors.size() >= 2; });
+  EXPECT_THAT(s.errors[0], HasSubstr("no gamepad connected"));
+  EXPECT_THAT(s.errors[1], HasSubstr("unknown teleop 'joystick'"));
+  const std::string session = s.session_dir;
+  EXPECT_TRUE(fs::exists(fs::path(session) / "episodes" / "demo_0.h5"));
+  owner.reset();  // closes the session
+  const store::Session opened = store::Session::Open(session, store::Session::Access::kReadOnly);
+  ASSERT_EQ(opened.demos().size(), 1u);
+  EXPECT_EQ(opened.demos()[0].meta.source, "keyboard-teleop");
+}
+
+// A scripted demonstration recorded in the studio is the one `recon record` records for the same
+// scenario seed: the live view's beacon readings do not disturb the recording's noise.
+TEST_F(StudioControllerTest, AStudioDemonstrationIsReproducibleFromItsSeed) {
+  std::string session;
+  {
+    StudioOptions options = Options();
+    options.beacon_noise_sigma = 0.05;  // noisy readings: each one draws from the generator
+    StudioController controller(options);
+    // Let the live view run (and read the beacon) for a while first.
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    controller.Push(ui::StartRecording{});
+    const ui::StudioSnapshot s = WaitFor(
+        controller, [](const auto& now) { return !now.recording && !now.episodes.empty(); });
+    session = s.session_dir;
+  }
+  const store::Session opened = store::Session::Open(session, store::Session::Access::kReadOnly);
+  ASSERT_EQ(opened.demos().size(), 1u);
+  const store::DemoRecord stored = opened.ReadDemo(opened.demos()[0].name);
+  auto world = cli::MakeSessionWorld(opened.manifest(), opened.manifest().placement);
+  teach::DemoRecorder recorder(*world, teach::ScriptedTeacher, "scripted-teleop");
+  recorder.Start(stored.meta.seed);
+  while (recorder.Tick()) {
+  }
+  const store::DemoRecord fresh = recorder.Take();
+  ASSERT_EQ(fresh.episode.samples.size(), stored.episode.samples.size());
+  for (size_t i = 0; i < fresh.episode.samples.size(); ++i) {
+    ASSERT_EQ(fresh.episode.samples[i].b, stored.episode.samples[i].b) << "sample " << i;
+    ASSERT_EQ(fresh.episode.samples[i].u, stored.episode.samples[i].u) << "sample " << i;
+  }
+}
+
+// Play data is recorded sample by sample with the latest sample shown, committed in chunks of
+// one scenario each; stopping keeps what was recorded.
+TEST_F(StudioControllerTest, PlayDataIsShownSampleBySampleAndCanBeStopped) {
+  StudioOptions options = Options();
+  options.real_time = true;  // 10 samples a second, so there is time to stop it
+  StudioController controller(options);
+  controller.Push(ui::RecordPlay{30});
+  ui::StudioSnapshot s =
+      WaitFor(controller, [](const auto& now) { return now.play_recorded >= 13; });
+  EXPECT_TRUE(s.recording_play);
+  EXPECT_EQ(s.play_target, 30);
+  EXPECT_EQ(s.play_image.width, 64);
+  EXPECT_EQ(s.play_reading.size(), 2u);
+  EXPECT_EQ(s.play_samples, 10) << "the first chunk (one scenario's 10 samples) is committed";
+  controller.Push(ui::StopPlay{});
+  s = WaitFor(controller, [](const auto& now) { return !now.recording_play; });
+  EXPECT_GE(s.play_samples, 13);
+  EXPECT_LT(s.play_samples, 30);
+  EXPECT_EQ(s.play_samples, s.play_recorded);
+}
+
+// The studio starts without a session at the picker, creates one, switches to another and back,
+// and remembers them most recent first; a broken list is moved aside and reported.
+TEST_F(StudioControllerTest, SessionsOpenFromThePickerAndAreRemembered) {
+  fs::create_directories(dir_ / "config");
+  { std::ofstream(dir_ / "config" / "recent.json") << "{\"sessions\": [3]}"; }
+  StudioController controller(Options(""));
+  ui::StudioSnapshot s = controller.Snapshot();
+  EXPECT_FALSE(s.session_open);
+  EXPECT_TRUE(s.picking_session);
+  ASSERT_EQ(s.errors.size(), 1u);
+  EXPECT_THAT(s.errors[0], HasSubstr("recent.json is unreadable"));
+  EXPECT_TRUE(fs::exists(dir_ / "config" / "recent.json.corrupt"));
+
+  controller.Push(ui::StartRecording{});  // nothing is open yet
+  controller.Push(ui::OpenSession{(dir_ / "first").string()});
+  s = WaitFor(controller, [](const auto& now) { return now.session_open; });
+  EXPECT_THAT(s.errors.back(), HasSubstr("open or create a session first"));
+  EXPECT_FALSE(s.picking_session);
+  controller.Push(ui::OpenSession{(dir_ / "second").string()});
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.session_dir.find("second") != std::string::npos; });
+  controller.Push(ui::OpenSession{(dir_ / "first").string()});
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.session_dir.find("first") != std::string::npos; });
+  ASSERT_EQ(s.recent_sessions.size(), 2u);
+  EXPECT_THAT(s.recent_sessions[0], HasSubstr("first"));
+  EXPECT_THAT(s.recent_sessions[1], HasSubstr("second"));
+  // A session of a world the studio does not teach is refused and the open one stays open.
+  store::SessionManifest dynamic;
+  {
+    auto world = worlds::MakeWorld("dynamic2d", "none", 0.0, false, {});
+    teach::SessionSetup setup;
+    setup.world_name = "dynamic2d";
+    setup.placement = "none";
+    store::Session::Create((dir_ / "dynamic").string(), teach::NewSessionManifest(setup, *world));
+  }
+  controller.Push(ui::OpenSession{(dir_ / "dynamic").string()});
+  s = WaitFor(controller, [](const auto& now) { return now.errors.size() >= 3; });
+  EXPECT_THAT(s.errors.back(), HasSubstr("the studio teaches in the tabletop cell"));
+  EXPECT_THAT(s.session_dir, HasSubstr("first"));
+  // The list survives a restart.
+  std::ifstream in(dir_ / "config" / "recent.json");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("first"));
+}
+
+// The Cell screen's rates are measured from what arrives, not written in.
+TEST_F(StudioControllerTest, DeviceRatesAndBeaconHealthAreMeasured) {
+  StudioController controller(Options());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  const ui::StudioSnapshot s = controller.Snapshot();
+  double camera = -1, beacons = -1;
+  for (const ui::DeviceView& d : s.devices) {
+    if (d.role == "camera") camera = d.rate_hz;
+    if (d.role == "beacons") beacons = d.rate_hz;
+  }
+  EXPECT_GT(camera, 10.0);
+  EXPECT_LT(camera, 40.0);
+  EXPECT_GT(beacons, 7.0);
+  EXPECT_LT(beacons, 12.0);
+  ASSERT_EQ(s.beacons.size(), 1u);
+  EXPECT_NEAR(s.beacons[0].rate_hz, beacons, 1e-9);
+  // The simulated DWM1001's noise (the session's sigma, 0 unless set) is what is measured.
+  EXPECT_GE(s.beacons[0].noise_m, 0.0);
+  EXPECT_LT(s.beacons[0].dropout_fraction, 0.2);
+}
+
+}  // namespace
+}  // namespace recon::studio

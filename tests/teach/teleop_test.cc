@@ -1,0 +1,192 @@
+// The teacher's side of recording in the simulated cell: Cartesian teleop (what the studio's
+// keyboard and gamepad drive), play data sample by sample, and the health of a reading stream.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "devices/render/mujoco_renderer.h"
+#include "engine/core/error.h"
+#include "engine/teach/cartesian_teleop.h"
+#include "engine/teach/play_recorder.h"
+#include "engine/teach/recorder.h"
+#include "engine/teach/stream_health.h"
+
+namespace recon::teach {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::unique_ptr<worlds::Tabletop> MakeTabletop() {
+  worlds::TabletopOptions options;
+  options.noise_sigma_m = 0.05;
+  return std::make_unique<worlds::Tabletop>(options, std::make_unique<render::MujocoRenderer>());
+}
+
+TEST(CartesianTeleop, HoldingStillSendsNoMotionAndTheGripperAsCommanded) {
+  auto world = MakeTabletop();
+  world->Reset(3);
+  TeleopCommand command;
+  command.close_gripper = true;
+  const std::vector<float> u = CartesianTeleopAction(*world, command);
+  ASSERT_EQ(u.size(), 7u);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(u[i], 0.0f) << "joint " << i;
+  EXPECT_EQ(u[6], 1.0f);
+  command.close_gripper = false;
+  command.velocity_m_s = {NAN, 0, 0};  // a broken device: hold still, do not throw
+  EXPECT_EQ(CartesianTeleopAction(*world, command)[0], 0.0f);
+}
+
+// Each axis, both ways: the grip point goes where the key says, by about the commanded distance,
+// and not far off the line.
+TEST(CartesianTeleop, MovesTheGripAlongEachAxis) {
+  auto world = MakeTabletop();
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double sign : {1.0, -1.0}) {
+      world->Reset(5);
+      // Start from a pose with room in every direction.
+      TeleopCommand command;
+      command.velocity_m_s = {0, 0, -0.1};
+      for (int i = 0; i < 10; ++i) world->Step(CartesianTeleopAction(*world, command));
+      const Eigen::Vector3d start = world->arm().GripPosition();
+      command.velocity_m_s = Eigen::Vector3d::Zero();
+      command.velocity_m_s[axis] = 0.1 * sign;
+      for (int i = 0; i < 10; ++i) world->Step(CartesianTeleopAction(*world, command));
+      const Eigen::Vector3d moved = world->arm().GripPosition() - start;
+      EXPECT_NEAR(moved[axis], 0.1 * sign, 0.03) << "axis " << axis << " sign " << sign;
+      Eigen::Vector3d off = moved;
+      off[axis] = 0;
+      EXPECT_LT(off.norm(), 0.02) << "axis " << axis << " sign " << sign;
+    }
+  }
+}
+
+TEST(CartesianTeleop, NeverDrivesTheFingersIntoTheTable) {
+  auto world = MakeTabletop();
+  world->Reset(2);
+  TeleopCommand command;
+  command.velocity_m_s = {0, 0, -0.3};
+  for (int i = 0; i < 40; ++i) world->Step(CartesianTeleopAction(*world, command));
+  EXPECT_GT(world->arm().GripPosition().z(), 0.0);
+  EXPECT_LT(world->arm().GripPosition().z(), 0.03);  // it did go all the way down
+}
+
+// A person (here a proportional controller on the same commands a keyboard sends) teaches the
+// whole task through the teleop: pick the toast, carry it to the plate, let go.
+TEST(CartesianTeleop, ATeleoperatedDemonstrationSucceedsAndIsRecorded) {
+  auto world = MakeTabletop();
+  TeleopCommand command;
+  DemoRecorder recorder(*world, CartesianTeleopTeacher(*world, &command), "keyboard");
+  recorder.Start(4);
+  const Eigen::Vector3d toast = world->ToastPosition();
+  const Eigen::Vector3d plate = world->PlatePosition();
+  struct Waypoint {
+    Eigen::Vector3d at;
+    bool close;
+  };
+  const std::vector<Waypoint> plan = {{toast + Eigen::Vector3d(0, 0, 0.12), false},
+                                      {toast, false},
+                                      {toast, true},
+                                      {toast + Eigen::Vector3d(0, 0, 0.12), true},
+                                      {plate + Eigen::Vector3d(0, 0, 0.12), true},
+                                      {plate + Eigen::Vector3d(0, 0, 0.05), true},
+                                      {plate + Eigen::Vector3d(0, 0, 0.05), false},
+                                      {plate + Eigen::Vector3d(0, 0, 0.25), false}};
+  size_t next = 0;
+  int dwell = 0;
+  while (recorder.recording() && next < plan.size()) {
+    const Eigen::Vector3d error = plan[next].at - world->arm().GripPosition();
+    Eigen::Vector3d v = 2.0 * error;
+    if (v.norm() > 0.15) v *= 0.15 / v.norm();
+    command.velocity_m_s = error.norm() < 0.004 ? Eigen::Vector3d::Zero() : v;
+    command.close_gripper = plan[next].close;
+    // A waypoint is reached when near it; a gripper change also waits a few steps.
+    if (error.norm() < 0.01 && ++dwell >= 3) {
+      ++next;
+      dwell = 0;
+    }
+    command.finish = next == plan.size();
+    recorder.Tick();
+  }
+  const store::DemoRecord record = recorder.Take();
+  EXPECT_TRUE(world->TaskSucceeded())
+      << "toast " << world->ToastPosition().transpose() << " plate " << plate.transpose();
+  EXPECT_TRUE(record.meta.succeeded);
+  EXPECT_EQ(record.meta.source, "keyboard");
+  EXPECT_GT(record.meta.num_samples, 20u);
+  EXPECT_LT(record.meta.num_samples, 200u);
+  // The teacher's actions are what was recorded, with the beacon reading beside them.
+  ASSERT_FALSE(record.episode.samples.empty());
+  EXPECT_EQ(record.episode.samples.front().b.size(), 2u);
+  EXPECT_EQ(record.episode.samples.front().u.size(), 7u);
+}
+
+TEST(PlayRecorder, RecordsSampleBySampleWhatAChunkRecords) {
+  auto world = MakeTabletop();
+  PlayRecorder recorder(*world, "simulated-play");
+  recorder.Start(17, 4);
+  EXPECT_EQ(recorder.last(), nullptr);
+  int ticks = 0;
+  while (recorder.recording()) {
+    recorder.Tick();
+    ++ticks;
+    ASSERT_NE(recorder.last(), nullptr);
+  }
+  EXPECT_EQ(ticks, 4);
+  const store::PlayRecord ticked = recorder.Take();
+  const store::PlayRecord chunk = RecordPlayChunk(*world, 17, 4);
+  ASSERT_EQ(ticked.samples.size(), 4u);
+  ASSERT_EQ(chunk.samples.size(), 4u);
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(ticked.samples[i].y, chunk.samples[i].y) << i;
+    EXPECT_EQ(ticked.samples[i].b, chunk.samples[i].b) << i;
+  }
+  EXPECT_EQ(ticked.meta.num_samples, 4u);
+  EXPECT_NEAR(ticked.meta.teaching_seconds, 0.4, 1e-9);
+  // The bowl moves between samples: the images differ while the plate's beacon stays put.
+  EXPECT_NE(ticked.samples[0].y, ticked.samples[1].y);
+  try {
+    recorder.Start(1, 0);
+    FAIL() << "a chunk of 0 samples was accepted";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("at least one sample"));
+  }
+}
+
+TEST(StreamHealth, ASteadyStreamHasItsRateAndNoDropouts) {
+  StreamHealth health(10.0, 3.0);
+  for (int i = 0; i <= 50; ++i) health.Add(i * 0.1, {1.0f, 2.0f});
+  const StreamStats stats = health.Stats(5.0);
+  EXPECT_NEAR(stats.rate_hz, 10.0, 0.01);
+  EXPECT_EQ(stats.dropout_fraction, 0.0);
+  EXPECT_EQ(stats.noise, 0.0);
+  EXPECT_EQ(stats.received, 31);  // 2.0 .. 5.0 s
+  EXPECT_NEAR(stats.seconds_since_last, 0.0, 1e-9);
+}
+
+TEST(StreamHealth, CountsMissingUpdatesAndMeasuresTheSpread) {
+  StreamHealth health(10.0, 3.0);
+  int received = 0;
+  for (int i = 0; i <= 30; ++i) {
+    if (i >= 10 && i < 15) continue;  // five updates lost
+    // x alternates +-1 cm about 0.5 m: a standard deviation of about 1 cm.
+    health.Add(i * 0.1, {i % 2 == 0 ? 0.51f : 0.49f, 0.2f});
+    ++received;
+  }
+  const StreamStats stats = health.Stats(3.0);
+  EXPECT_EQ(stats.received, received);
+  EXPECT_NEAR(stats.dropout_fraction, 5.0 / (5.0 + received), 1e-9);
+  EXPECT_NEAR(stats.noise, 0.01, 0.001);
+  // It stops: after a second the missing updates count, after the window it is all dropouts.
+  EXPECT_GT(health.Stats(4.0).dropout_fraction, stats.dropout_fraction);
+  const StreamStats silent = health.Stats(7.0);
+  EXPECT_EQ(silent.received, 0);
+  EXPECT_EQ(silent.rate_hz, 0.0);
+  EXPECT_EQ(silent.dropout_fraction, 1.0);
+  EXPECT_NEAR(silent.seconds_since_last, 4.0, 1e-9);
+  EXPECT_THROW(StreamHealth(0.0), UserError);
+}
+
+}  // namespace
+}  // namespace recon::teach

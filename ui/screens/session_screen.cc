@@ -1,0 +1,64 @@
+#include <imgui.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+
+#include "ui/screens/screens.h"
+#include "ui/widgets/widgets.h"
+
+namespace recon::ui {
+
+void DrawSessionMenu(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  const bool busy = s.recording || s.recording_play || s.calibration.running ||
+                    s.rollouts_running ||
+                    std::any_of(s.training.begin(), s.training.end(),
+                                [](const TrainingView& t) { return t.running; });
+  if (!BeginMenu("Session")) return;
+  if (MenuItem("Open or create...", !busy)) context.commands.Push(ShowSessionPicker{true});
+  if (!s.recent_sessions.empty()) {
+    ImGui::Separator();
+    ImGui::TextDisabled("Recent");
+    for (const std::string& dir : s.recent_sessions) {
+      if (MenuItem((dir + "##recent-menu").c_str(), !busy && dir != s.session_dir)) {
+        context.commands.Push(OpenSession{dir});
+      }
+    }
+  }
+  ImGui::Separator();
+  // Every change (an episode, a mark, a calibration) is committed to disk when it is made, so
+  // there is nothing to save by hand: say so where people look for Save.
+  ImGui::TextDisabled("Saved: every change is on disk when it is made");
+  ImGui::EndMenu();
+}
+
+void DrawSessionPicker(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  ScreenHeader("Session", "Open a teaching session, or create one in a new folder.");
+  std::array<char, 1024>& folder = context.textures.session_folder;
+  ImGui::TextUnformatted("Folder (a new folder creates a tabletop session):");
+  const bool entered = InputText("##session-folder", folder.data(), folder.size(), 560.0f);
+  ImGui::SameLine();
+  if (Button("Open or create", folder[0] != '\0', "type the session's folder first") ||
+      (entered && folder[0] != '\0')) {
+    context.commands.Push(OpenSession{folder.data()});
+  }
+  if (s.session_open) {
+    ImGui::SameLine();
+    if (Button("Cancel##session-picker")) context.commands.Push(ShowSessionPicker{false});
+  }
+  ImGui::Spacing();
+  if (s.recent_sessions.empty()) {
+    ImGui::TextDisabled("No recent sessions.");
+    return;
+  }
+  ImGui::TextUnformatted("Recent sessions:");
+  for (const std::string& dir : s.recent_sessions) {
+    if (Selectable((dir + "##recent").c_str(), dir == s.session_dir)) {
+      context.commands.Push(OpenSession{dir});
+    }
+  }
+}
+
+}  // namespace recon::ui
