@@ -16,6 +16,8 @@
 #include "app/studio/rollout_playback.h"
 #include "app/studio/studio_jobs.h"
 #include "devices/render/mujoco_renderer.h"
+#include "devices/teleop/gamepad_mapping.h"
+#include "devices/teleop/linux_joystick.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
@@ -124,6 +126,7 @@ class StudioController::Cell {
   /// One pass of the cell loop: a recording step, a play sample, the beacons, a finished job.
   void Tick() {
     const Clock::time_point now = Clock::now();
+    PollGamepad(now);
     if (recorder_ && recorder_->recording()) {
       // A person teleoperating needs the real control rate, whatever --fast says.
       const bool paced = options_.real_time || teleop_mode_ != "scripted";
@@ -265,11 +268,16 @@ class StudioController::Cell {
                          "arrows move the arm, Page Up/Down raise and "
                          "lower it, Space opens and closes the gripper",
                          true, 0.0, ""});
-    s.devices.push_back({"teleop", "gamepad", "none found", false, 0.0, ""});
+    const bool pad = gamepad_ && gamepad_->connected();
+    s.devices.push_back(
+        {"teleop", "gamepad",
+         pad ? gamepad_->name() + " at " + gamepad_->path() +
+                   ": left stick moves the arm, right stick raises it, A grips, Start keeps"
+             : "none found (looked for " + GamepadPlaces() + ")",
+         pad, 0.0, pad ? "" : gamepad_error_});
     s.teleop_choices = {{"scripted", "Scripted", true, ""},
                         {"keyboard", "Keyboard", true, ""},
-                        {"gamepad", "Gamepad", false,
-                         "no gamepad connected (gamepad drivers come with the hardware path)"}};
+                        {"gamepad", "Gamepad", pad, "no gamepad connected"}};
     std::optional<calib::CalibrationReport> calibration;
     if (!m.calibration_file.empty()) {
       calibration =
@@ -432,6 +440,57 @@ class StudioController::Cell {
         chunk);
   }
 
+  std::string GamepadPlaces() const {
+    if (options_.gamepad_paths.empty()) return "/dev/input/js*";
+    std::string places;
+    for (const std::string& p : options_.gamepad_paths) places += (places.empty() ? "" : ", ") + p;
+    return places;
+  }
+
+  /// Finds a gamepad (every 2 s while none is open), reads its events and, when it drives the
+  /// recording, turns its sticks into the same TeleopInput the keyboard sends.
+  void PollGamepad(Clock::time_point now) {
+    if (!(gamepad_ && gamepad_->connected()) && now >= next_gamepad_scan_) {
+      next_gamepad_scan_ = now + std::chrono::seconds(2);
+      const std::vector<std::string> candidates =
+          options_.gamepad_paths.empty() ? teleop::LinuxJoystick::Find() : options_.gamepad_paths;
+      for (const std::string& path : candidates) {
+        try {
+          gamepad_ = std::make_unique<teleop::LinuxJoystick>(path);
+          gamepad_before_ = {};
+          gamepad_error_.clear();
+          Changed();
+          break;
+        } catch (const UserError& e) {
+          gamepad_error_ = e.what();
+        }
+      }
+    }
+    if (!gamepad_ || !gamepad_->connected()) return;
+    if (!gamepad_->Poll()) {
+      gamepad_error_ = gamepad_->last_error();
+      Changed();
+      if (teleop_mode_ == "gamepad") {
+        // The teacher's hand is gone: stop the arm where it is.
+        teleop_input_ = {};
+        teleop_command_.velocity_m_s.setZero();
+        AddError(gamepad_error_ + "; the arm holds still");
+      }
+      return;
+    }
+    const teleop::GamepadState& state = gamepad_->state();
+    const teleop::GamepadTeleop pad = teleop::MapGamepad(state, gamepad_before_);
+    gamepad_before_ = state;
+    if (teleop_mode_ != "gamepad" || !(recorder_ && recorder_->recording())) return;
+    ui::TeleopInput input;
+    input.screen_right = pad.screen_right;
+    input.screen_up = pad.screen_up;
+    input.raise = pad.raise;
+    input.close_gripper = teleop_input_.close_gripper != pad.toggle_gripper;
+    if (input != teleop_input_) Apply(input);
+    if (pad.keep) Commit();
+  }
+
   teach::Teacher MakeTeacher() {
     if (teleop_mode_ == "scripted") return teach::ScriptedTeacher;
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
@@ -541,10 +600,10 @@ class StudioController::Cell {
     if (recorder_ && recorder_->recording()) {
       throw UserError("finish or discard the recording before changing the teleop");
     }
-    if (c.mode == "gamepad") {
-      throw UserError("no gamepad connected (gamepad drivers come with the hardware path)");
+    if (c.mode == "gamepad" && !(gamepad_ && gamepad_->connected())) {
+      throw UserError("no gamepad connected (looked for " + GamepadPlaces() + ")");
     }
-    if (c.mode != "scripted" && c.mode != "keyboard") {
+    if (c.mode != "scripted" && c.mode != "keyboard" && c.mode != "gamepad") {
       throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
     }
     teleop_mode_ = c.mode;
@@ -615,6 +674,10 @@ class StudioController::Cell {
   teach::TeleopCommand teleop_command_;
   std::unique_ptr<teach::PlayRecorder> play_;
   std::unique_ptr<RolloutPlayback> playback_;
+  std::unique_ptr<teleop::LinuxJoystick> gamepad_;
+  teleop::GamepadState gamepad_before_;
+  std::string gamepad_error_;
+  Clock::time_point next_gamepad_scan_ = Clock::now();
   int play_target_ = 0, play_done_ = 0;
   RgbImage play_image_;
   uint64_t play_image_frame_ = 0;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "ui/studio/studio_commands.h"
 #include "ui/studio/studio_snapshot.h"
@@ -16,6 +17,8 @@ namespace recon::studio {
 struct StudioOptions {
   /// Opened if it holds a session, created otherwise; empty: start at the session picker.
   std::string session_dir;
+  /// Gamepads to look for (empty: /dev/input/js*, looked for every 2 s while none is open).
+  std::vector<std::string> gamepad_paths;
   /// The list of recent sessions (empty: RecentSessions::DefaultPath()).
   std::string recent_sessions_file;
   std::string world = "tabletop";

@@ -63,6 +63,26 @@ struct KillStats {
   int play_chunks_seen = 0;
 };
 
+/// Wall seconds of one uninterrupted `recon record` with `record_args`, recording into `scratch`
+/// instead of the session the args name. The kills are placed in fractions of this, so that
+/// they land in the run's commits however loaded the machine is (a fixed window missed them all
+/// when other tests shared the CPU).
+double SecondsOfOneRun(std::vector<std::string> record_args, const fs::path& scratch) {
+  for (size_t i = 0; i + 1 < record_args.size(); ++i) {
+    if (record_args[i] == "--session") record_args[i + 1] = scratch.string();
+  }
+  fs::remove_all(scratch);
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = Spawn(record_args);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fs::remove_all(scratch);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the timing run failed";
+  return seconds;
+}
+
 /// Kills `recon record` `kills` times at delays drawn from [min_s, max_s) and checks the session
 /// after each kill against `expected_demo` / `expected_play` (the reference for a demo or play
 /// number and size).
@@ -161,18 +181,20 @@ TEST(CrashSafetyTest, KillNineWhileRecordingLosesAtMostTheEpisodeInProgress) {
   // A run of 100 demonstrations and 60 play samples takes about 1 s with start-up (Torch's
   // libraries alone take ~0.6 s to load); kills land anywhere in it, start-up included, and
   // some after it ended (a completed run).
+  const std::vector<std::string> args = {"record",    "--session", dir.string(), "--world",
+                                         "dynamic2d", "--demos",   "100",        "--play",
+                                         "60",        "--seed",    "5"};
+  const double run_s = SecondsOfOneRun(args, dir.string() + "-timing");
   KillStats stats;
   KillRepeatedly(
-      dir,
-      {"record", "--session", dir.string(), "--world", "dynamic2d", "--demos", "100", "--play",
-       "60", "--seed", "5"},
-      /*kills=*/30, 0.6, 1.2, /*seed=*/0xC4A5,
+      dir, args,
+      /*kills=*/30, 0.55 * run_s, 1.1 * run_s, /*seed=*/0xC4A5,
       [&](int n) -> const Episode& { return reference.Demo(n); },
       [&](int n, int64_t size) { return reference.Play(n, size); }, stats);
   std::printf(
       "dynamic2d: %d kills, %d in the middle of a commit; %d demonstrations and %d play "
-      "chunks committed and intact (kill delays seeded 0xC4A5)\n",
-      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen);
+      "chunks committed and intact (a whole run took %.2f s; kill delays seeded 0xC4A5)\n",
+      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, run_s);
   EXPECT_GT(stats.episodes_seen, 0);
   EXPECT_GT(stats.play_chunks_seen, 0);
   // The test is only worth something if kills hit commits in progress.
@@ -189,18 +211,21 @@ TEST(CrashSafetyTest, KillNineWhileRecordingCameraEpisodes) {
   const std::unique_ptr<worlds::World> world =
       worlds::MakeWorld("tabletop", "plate", 0.0, false, cell);
   Reference reference{*world, 3};
+  const std::vector<std::string> args = {"record",   "--session",       dir.string(), "--world",
+                                         "tabletop", "--image-size",    "32",         "--demos",
+                                         "20",       "--play",          "20",         "--seed",
+                                         "3",        "--no-calibration"};
+  const double run_s = SecondsOfOneRun(args, dir.string() + "-timing");
   KillStats stats;
   KillRepeatedly(
-      dir,
-      {"record", "--session", dir.string(), "--world", "tabletop", "--image-size", "32", "--demos",
-       "20", "--play", "20", "--seed", "3", "--no-calibration"},
-      /*kills=*/5, 1.0, 2.5, /*seed=*/0x7AB1E,
+      dir, args,
+      /*kills=*/5, 0.25 * run_s, 0.6 * run_s, /*seed=*/0x7AB1E,
       [&](int n) -> const Episode& { return reference.Demo(n); },
       [&](int n, int64_t size) { return reference.Play(n, size); }, stats);
   std::printf(
       "tabletop: %d kills, %d in the middle of a commit; %d demonstrations and %d play "
-      "chunks committed and intact (kill delays seeded 0x7AB1E)\n",
-      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen);
+      "chunks committed and intact (a whole run took %.2f s; kill delays seeded 0x7AB1E)\n",
+      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, run_s);
   EXPECT_GT(stats.episodes_seen, 0);
   fs::remove_all(dir);
 }

@@ -4,8 +4,11 @@
 
 #include "app/studio/studio_controller.h"
 
+#include <fcntl.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <linux/joystick.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -121,6 +124,59 @@ TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheCameraShowsIt) {
   const store::Session opened = store::Session::Open(session, store::Session::Access::kReadOnly);
   ASSERT_EQ(opened.demos().size(), 1u);
   EXPECT_EQ(opened.demos()[0].meta.source, "keyboard-teleop");
+}
+
+// A gamepad (here a FIFO carrying the joystick API's events, as /dev/input/js0 would) is found,
+// drives the arm with its left stick, grips with A, keeps the take with Start, and its
+// unplugging stops the arm and is reported.
+TEST_F(StudioControllerTest, AGamepadDrivesTheArmAndItsUnpluggingIsReported) {
+  const std::string fifo = (dir_ / "js0").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const int writer = open(fifo.c_str(), O_RDWR);  // read-write: opening does not wait for a reader
+  ASSERT_GE(writer, 0);
+  const auto send = [&](uint8_t type, uint8_t number, int16_t value) {
+    js_event e{0, value, type, number};
+    ASSERT_EQ(write(writer, &e, sizeof(e)), static_cast<ssize_t>(sizeof(e)));
+  };
+  StudioOptions options = Options();
+  options.gamepad_paths = {fifo};
+  StudioController controller(options);
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) {
+    for (const ui::TeleopChoice& c : now.teleop_choices) {
+      if (c.mode == "gamepad") return c.available;
+    }
+    return false;
+  });
+  controller.Push(ui::SetTeleopMode{"gamepad"});
+  controller.Push(ui::StartRecording{});
+  s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  EXPECT_EQ(s.teleop, "gamepad");
+  const std::array<float, 2> start = s.grip_pixel;
+  send(JS_EVENT_AXIS, 0, 32767);  // left stick right
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.grip_pixel[0] > start[0] + 20; }, 20);
+  EXPECT_NEAR(s.grip_pixel[1], start[1], 6);
+  send(JS_EVENT_AXIS, 0, 0);
+  send(JS_EVENT_BUTTON, 0, 1);  // A: grip
+  s = WaitFor(
+      controller, [](const auto& now) { return now.gripper_closed; }, 20);
+  send(JS_EVENT_BUTTON, 7, 1);  // Start: keep
+  s = WaitFor(controller, [](const auto& now) { return !now.recording && !now.episodes.empty(); });
+  ASSERT_EQ(s.episodes.size(), 1u);
+  close(writer);  // unplugged
+  s = WaitFor(controller, [](const auto& now) {
+    return !now.errors.empty() && now.errors.back().find("holds still") != std::string::npos;
+  });
+  EXPECT_THAT(s.errors.back(), HasSubstr("js0 closed"));
+  bool listed = false;
+  for (const ui::DeviceView& d : s.devices) {
+    if (d.kind == "gamepad") {
+      listed = true;
+      EXPECT_FALSE(d.connected);
+      EXPECT_THAT(d.last_error, HasSubstr("closed"));
+    }
+  }
+  EXPECT_TRUE(listed);
 }
 
 // A scripted demonstration recorded in the studio is the one `recon record` records for the same

@@ -43,12 +43,17 @@ void DrawTeleopChoice(const ScreenContext& context) {
       context.commands.Push(SetTeleopMode{choice.mode});
     }
   }
-  if (s.teleop == "keyboard") {
+  const char* help =
+      s.teleop == "keyboard" ? "Arrows move the arm as on screen, Page Up/Down raise and lower it, "
+                               "Space opens or closes the gripper, Enter keeps the demonstration."
+      : s.teleop == "gamepad" ? "The left stick moves the arm as on screen, the right stick raises "
+                                "and lowers it, A opens or closes the gripper, Start keeps the "
+                                "demonstration."
+                              : nullptr;
+  if (help != nullptr) {
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kCameraWidth);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped(
-        "Arrows move the arm as on screen, Page Up/Down raise and lower it, Space opens or "
-        "closes the gripper, Enter keeps the demonstration.");
+    ImGui::TextWrapped("%s", help);
     ImGui::PopStyleColor();
     ImGui::PopTextWrapPos();
   }
