@@ -178,6 +178,19 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
           throw UserError("hold lasts 0-600 seconds, not " + argument.substr(gap + 1));
         }
         Hold(key, seconds);
+      } else if (verb == "sleep") {
+        // sleep <seconds>: frames at about 30 a second for that much wall time, e.g. to let a
+        // playback or a teleop run as long as a person would watch it.
+        const double seconds = std::stod(argument);
+        if (!(seconds > 0 && seconds <= 600)) {
+          throw UserError("sleep lasts 0-600 seconds, not " + argument);
+        }
+        const auto until =
+            std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+        while (std::chrono::steady_clock::now() < until) {
+          WaitFrames(1);
+          std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        }
       } else if (verb == "wait") {
         WaitFrames(std::stoi(argument));
       } else if (verb == "wait-idle") {
@@ -190,7 +203,7 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
                              : (std::filesystem::path(screenshot_dir_) / path).string());
       } else {
         throw UserError("unknown command '" + verb +
-                        "' (click, type, press, hold, wait, wait-idle, screenshot)");
+                        "' (click, type, press, hold, wait, sleep, wait-idle, screenshot)");
       }
     } catch (const UserError& e) {
       throw UserError(where + e.what());

@@ -48,7 +48,8 @@ class UiDriver {
 
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
   /// (enter, tab, escape, backspace, space, up, down, left, right, pageup, pagedown),
-  /// `hold <key> <seconds>`, `wait <frames>`, `wait-idle [seconds]`, `screenshot <file.png>`;
+  /// `hold <key> <seconds>`, `wait <frames>`, `sleep <seconds>` (frames for that wall time),
+  /// `wait-idle [seconds]`, `screenshot <file.png>`;
   /// `#` starts a comment. UserError naming the line number for
   /// anything else.
   void RunScript(const std::string& script, const std::string& source_name = "script");
