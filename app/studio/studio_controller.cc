@@ -172,6 +172,13 @@ class StudioController::Cell {
   void Publish(ui::StudioSnapshot& s) {
     if (!session_) {
       s = {};
+      // The steps say what they wait for: a session first.
+      const teach::WorkflowFacts none;
+      s.steps = teach::EvaluateWorkflow(none);
+      for (int i = 0; i < teach::kNumSteps; ++i) {
+        s.can_open[i] = teach::CanOpen(none, teach::kAllSteps[i]);
+      }
+      s.next_step = teach::NextStep(none);
       s.picking_session = true;
       s.recent_sessions = recent_.entries();
       s.errors = errors_;

@@ -240,6 +240,9 @@ TEST_F(StudioControllerTest, SessionsOpenFromThePickerAndAreRemembered) {
   ui::StudioSnapshot s = controller.Snapshot();
   EXPECT_FALSE(s.session_open);
   EXPECT_TRUE(s.picking_session);
+  // Every step says what it waits for.
+  ASSERT_EQ(s.steps.size(), static_cast<size_t>(teach::kNumSteps));
+  EXPECT_THAT(s.steps[1].why_blocked, HasSubstr("session"));
   ASSERT_EQ(s.errors.size(), 1u);
   EXPECT_THAT(s.errors[0], HasSubstr("recent.json is unreadable"));
   EXPECT_TRUE(fs::exists(dir_ / "config" / "recent.json.corrupt"));
