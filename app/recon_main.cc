@@ -9,6 +9,7 @@
 #include "app/cli/run_main.h"
 #include "app/cli/session_command.h"
 #include "app/cli/train_commands.h"
+#include "app/cli/uwb_command.h"
 #include "engine/core/malloc_tuning.h"
 
 int main(int argc, char** argv) {
@@ -26,5 +27,6 @@ int main(int argc, char** argv) {
   recon::cli::AddTrainCommands(app, global);
   recon::cli::AddSessionCommands(app);
   recon::cli::AddReportCommand(app);
+  recon::cli::AddUwbCommand(app);
   return recon::cli::RunMain(app, argc, argv, "recon");
 }
