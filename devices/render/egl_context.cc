@@ -13,6 +13,11 @@
 
 namespace recon::render {
 
+std::mutex& PixelReadbackMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 namespace {
 
 std::string EglErrorText(EGLint code) {

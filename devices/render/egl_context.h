@@ -1,8 +1,15 @@
 #pragma once
 
+#include <mutex>
 #include <string>
 
 namespace recon::render {
+
+/// Held while drawing into and reading pixels back from any context of the process: Mesa 22.3's
+/// llvmpipe crashed (a segmentation fault inside glReadPixels, swrast_dri.so) about once in a
+/// dozen experiments when two threads' contexts read pixels at the same moment on a loaded
+/// machine. llvmpipe rasterises each frame on its own worker threads, so little is lost.
+std::mutex& PixelReadbackMutex();
 
 /// A desktop OpenGL context without a window or a display server: Mesa's EGL on its surfaceless
 /// platform (falling back to an EGL device), compatibility profile, RGBA8 + depth 24 + stencil 8.

@@ -194,6 +194,7 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
   mjv_updateScene(m, scene.data(), &s.option, &s.perturb, &s.camera, mjCAT_ALL, &r.scene);
 
   const mjrRect viewport = {0, 0, width, height};
+  std::unique_lock draw_lock(PixelReadbackMutex());
   mjr_setBuffer(mjFB_OFFSCREEN, &r.context);
   if (r.context.currentBuffer != mjFB_OFFSCREEN) {
     throw std::runtime_error("MuJoCo has no offscreen buffer for scene \"" + ModelName(m) + "\"");
@@ -205,7 +206,9 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
   const size_t row_bytes = static_cast<size_t>(width) * 3;
   s.bottom_up.resize(row_bytes * height);
   mjr_readPixels(s.bottom_up.data(), nullptr, viewport, &r.context);
-  if (const GLenum error = glGetError(); error != GL_NO_ERROR) {
+  const GLenum error = glGetError();
+  draw_lock.unlock();
+  if (error != GL_NO_ERROR) {
     throw std::runtime_error("OpenGL error " + Hex(error) + " while rendering camera \"" + camera +
                              "\" of MuJoCo scene \"" + ModelName(m) + "\"");
   }

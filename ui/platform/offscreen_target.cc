@@ -1,5 +1,7 @@
 #include "ui/platform/offscreen_target.h"
 
+#include "devices/render/egl_context.h"
+
 // Framebuffer objects are core GL 3.0; GLVND's libOpenGL exports them directly.
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/gl.h>
@@ -58,7 +60,10 @@ RgbImage OffscreenTarget::Read() const {
   image.height = height_;
   image.rgb.resize(static_cast<size_t>(width_) * height_ * 3);
   std::vector<uint8_t> rows(image.rgb.size());
-  glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+  {
+    std::lock_guard lock(render::PixelReadbackMutex());  // see egl_context.h
+    glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+  }
   const size_t stride = static_cast<size_t>(width_) * 3;
   for (int y = 0; y < height_; ++y) {
     std::memcpy(image.rgb.data() + y * stride, rows.data() + (height_ - 1 - y) * stride, stride);
