@@ -7,18 +7,16 @@
 #include <optional>
 
 #include "app/cli/session_report_builder.h"
-#include "app/cli/session_summary.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
+#include "app/studio/gamepad_source.h"
 #include "app/studio/job_thread.h"
 #include "app/studio/recent_sessions.h"
 #include "app/studio/rollout_playback.h"
+#include "app/studio/session_view.h"
 #include "app/studio/studio_jobs.h"
 #include "devices/render/mujoco_renderer.h"
-#include "devices/teleop/gamepad_mapping.h"
-#include "devices/teleop/linux_joystick.h"
-#include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
@@ -172,13 +170,7 @@ class StudioController::Cell {
   void Publish(ui::StudioSnapshot& s) {
     if (!session_) {
       s = {};
-      // The steps say what they wait for: a session first.
-      const teach::WorkflowFacts none;
-      s.steps = teach::EvaluateWorkflow(none);
-      for (int i = 0; i < teach::kNumSteps; ++i) {
-        s.can_open[i] = teach::CanOpen(none, teach::kAllSteps[i]);
-      }
-      s.next_step = teach::NextStep(none);
+      ShowWorkflow(teach::WorkflowFacts{}, s);  // the steps say they wait for a session
       s.picking_session = true;
       s.recent_sessions = recent_.entries();
       s.errors = errors_;
@@ -257,118 +249,14 @@ class StudioController::Cell {
     if (job.finish || !job.error.empty()) Changed();
   }
 
-  /// Everything the snapshot shows of the session and the workflow. Reads the calibration and
-  /// the rollout files, so it runs when something changed, not at the camera's 30 Hz.
+  /// Everything the snapshot shows of the session and the workflow (session_view.h).
   void RebuildSessionView() {
-    const store::SessionManifest& m = session_->manifest();
-    ui::StudioSnapshot& s = session_view_;
-    s = {};
-    s.session_open = true;
-    s.session_dir = session_->dir();
-    s.world = m.world;
-    s.cell_kind = m.cell;
-    for (const store::DeviceEntry& d : m.devices) {
-      if (d.role == "teleop") continue;  // the teleops are listed below, from what is plugged in
-      s.devices.push_back({d.role, d.kind, d.detail, true, 0.0, ""});
-    }
-    s.devices.push_back({"teleop", "keyboard",
-                         "arrows move the arm, Page Up/Down raise and "
-                         "lower it, Space opens and closes the gripper",
-                         true, 0.0, ""});
-    const bool pad = gamepad_ && gamepad_->connected();
-    s.devices.push_back(
-        {"teleop", "gamepad",
-         pad ? gamepad_->name() + " at " + gamepad_->path() +
-                   ": left stick moves the arm, right stick raises it, A grips, Start keeps"
-             : "none found (looked for " + GamepadPlaces() + ")",
-         pad, 0.0, pad ? "" : gamepad_error_});
-    s.teleop_choices = {{"scripted", "Scripted", true, ""},
-                        {"keyboard", "Keyboard", true, ""},
-                        {"gamepad", "Gamepad", pad, "no gamepad connected"}};
-    std::optional<calib::CalibrationReport> calibration;
-    if (!m.calibration_file.empty()) {
-      calibration =
-          calib::LoadCalibration((fs::path(session_->dir()) / m.calibration_file).string());
-    }
-    const teach::WorkflowFacts facts = Facts(calibration);
-    s.steps = teach::EvaluateWorkflow(facts);
-    for (int i = 0; i < teach::kNumSteps; ++i) {
-      s.can_open[i] = teach::CanOpen(facts, teach::kAllSteps[i]);
-    }
-    s.next_step = teach::NextStep(facts);
-    s.calibration = CalibrationView(calibration);
-    s.calibration.points_target = options_.calibration_points;
-    for (const store::EpisodeEntry& e : session_->demos()) {
-      s.episodes.push_back({e.name, static_cast<int>(e.meta.num_samples), e.meta.teaching_seconds,
-                            e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
-    }
-    s.play_samples = static_cast<int>(session_->PlaySamples());
-    s.teacher_seconds = cli::TeachingLedgerJson(*session_)["recon_play_total_s"].get<double>();
-    for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-      const auto r = cli::ReadJsonFile(
-          (fs::path(session_->dir()) / "rollouts" / (std::string(method) + ".json")).string());
-      if (!r) continue;
-      ui::RolloutView view;
-      view.method = method;
-      view.label = r->value("label", std::string(method));
-      view.metric_name = r->value("metric_name", std::string());
-      view.metric_mean = r->value("metric_mean", 0.0);
-      view.metric_sem = r->value("metric_sem", 0.0);
-      view.has_success = r->value("has_success", false);
-      view.success_rate = r->value("success_rate", 0.0);
-      view.tests = r->value("tests", 0);
-      s.rollouts.push_back(view);
-    }
-  }
-
-  teach::WorkflowFacts Facts(const std::optional<calib::CalibrationReport>& calibration) const {
-    const store::SessionManifest& m = session_->manifest();
-    teach::WorkflowFacts f;
-    f.session_open = true;
-    f.cell_connected = true;  // simulated devices are always there
-    f.beacons_required = static_cast<int>(m.beacons.size());
-    f.beacons_assigned = static_cast<int>(m.beacon_assignments.size());
-    for (const BeaconSpec& b : m.beacons) {
-      if (!m.beacon_assignments.count(b.name)) f.unmarked_objects.push_back(b.object);
-    }
-    if (calibration) {
-      f.calibration_present = true;
-      f.calibration_passed = calibration->passed;
-      f.calibration_rmse_m = calibration->rmse_m;
-    }
-    for (const store::EpisodeEntry& e : session_->demos()) {
-      if (e.flags.bad || !e.problem.empty()) continue;
-      ++f.demos;
-      f.demo_seconds += e.meta.teaching_seconds;
-    }
-    f.play_samples = static_cast<int>(session_->PlaySamples());
-    f.recording_demos = recorder_ && recorder_->recording();
-    f.training = jobs_.RunningName() == "training";
-    for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-      const fs::path dir(session_->dir());
-      if (fs::exists(dir / "checkpoints" / (std::string(method) + ".ckpt"))) {
-        f.trained_methods.push_back(method);
-      }
-      if (fs::exists(dir / "rollouts" / (std::string(method) + ".json"))) {
-        f.evaluated_methods.push_back(method);
-      }
-    }
-    f.report_written = fs::exists(fs::path(session_->dir()) / "report" / "report.html");
-    return f;
-  }
-
-  static ui::CalibrationView CalibrationView(
-      const std::optional<calib::CalibrationReport>& calibration) {
-    ui::CalibrationView view;
-    if (!calibration) return view;
-    view.present = true;
-    view.passed = calibration->passed;
-    view.rmse_m = calibration->rmse_m;
-    view.p95_m = calibration->p95_m;
-    view.threshold_m = calibration->options.pass_rmse_m;
-    view.residual_m = calibration->residual_norm_m;
-    for (bool outlier : calibration->outlier) view.inlier.push_back(!outlier);
-    return view;
+    SessionViewInputs inputs;
+    inputs.recording_demos = recorder_ && recorder_->recording();
+    inputs.training = jobs_.RunningName() == "training";
+    inputs.calibration_points = options_.calibration_points;
+    inputs.gamepad = gamepad_.View();
+    session_view_ = BuildSessionView(*session_, inputs);
   }
 
   /// The live camera, the objects one can click and where the beacons read; rendered only for
@@ -447,48 +335,23 @@ class StudioController::Cell {
         chunk);
   }
 
-  std::string GamepadPlaces() const {
-    if (options_.gamepad_paths.empty()) return "/dev/input/js*";
-    std::string places;
-    for (const std::string& p : options_.gamepad_paths) places += (places.empty() ? "" : ", ") + p;
-    return places;
-  }
-
-  /// Finds a gamepad (every 2 s while none is open), reads its events and, when it drives the
-  /// recording, turns its sticks into the same TeleopInput the keyboard sends.
+  /// Reads the gamepad and, when it drives the recording, turns its sticks into the same
+  /// TeleopInput the keyboard sends.
   void PollGamepad(Clock::time_point now) {
-    if (!(gamepad_ && gamepad_->connected()) && now >= next_gamepad_scan_) {
-      next_gamepad_scan_ = now + std::chrono::seconds(2);
-      const std::vector<std::string> candidates =
-          options_.gamepad_paths.empty() ? teleop::LinuxJoystick::Find() : options_.gamepad_paths;
-      for (const std::string& path : candidates) {
-        try {
-          gamepad_ = std::make_unique<teleop::LinuxJoystick>(path);
-          gamepad_before_ = {};
-          gamepad_error_.clear();
-          Changed();
-          break;
-        } catch (const UserError& e) {
-          gamepad_error_ = e.what();
-        }
-      }
-    }
-    if (!gamepad_ || !gamepad_->connected()) return;
-    if (!gamepad_->Poll()) {
-      gamepad_error_ = gamepad_->last_error();
+    if (gamepad_.Poll(now)) {
       Changed();
-      if (teleop_mode_ == "gamepad") {
+      if (!gamepad_.connected() && teleop_mode_ == "gamepad") {
         // The teacher's hand is gone: stop the arm where it is.
         teleop_input_ = {};
         teleop_command_.velocity_m_s.setZero();
-        AddError(gamepad_error_ + "; the arm holds still");
+        AddError(gamepad_.error() + "; the arm holds still");
       }
+    }
+    if (!gamepad_.connected() || teleop_mode_ != "gamepad" ||
+        !(recorder_ && recorder_->recording())) {
       return;
     }
-    const teleop::GamepadState& state = gamepad_->state();
-    const teleop::GamepadTeleop pad = teleop::MapGamepad(state, gamepad_before_);
-    gamepad_before_ = state;
-    if (teleop_mode_ != "gamepad" || !(recorder_ && recorder_->recording())) return;
+    const teleop::GamepadTeleop& pad = gamepad_.command();
     ui::TeleopInput input;
     input.screen_right = pad.screen_right;
     input.screen_up = pad.screen_up;
@@ -607,8 +470,8 @@ class StudioController::Cell {
     if (recorder_ && recorder_->recording()) {
       throw UserError("finish or discard the recording before changing the teleop");
     }
-    if (c.mode == "gamepad" && !(gamepad_ && gamepad_->connected())) {
-      throw UserError("no gamepad connected (looked for " + GamepadPlaces() + ")");
+    if (c.mode == "gamepad" && !gamepad_.connected()) {
+      throw UserError("no gamepad connected (looked for " + gamepad_.Places() + ")");
     }
     if (c.mode != "scripted" && c.mode != "keyboard" && c.mode != "gamepad") {
       throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
@@ -681,10 +544,7 @@ class StudioController::Cell {
   teach::TeleopCommand teleop_command_;
   std::unique_ptr<teach::PlayRecorder> play_;
   std::unique_ptr<RolloutPlayback> playback_;
-  std::unique_ptr<teleop::LinuxJoystick> gamepad_;
-  teleop::GamepadState gamepad_before_;
-  std::string gamepad_error_;
-  Clock::time_point next_gamepad_scan_ = Clock::now();
+  GamepadSource gamepad_{options_.gamepad_paths};
   int play_target_ = 0, play_done_ = 0;
   RgbImage play_image_;
   uint64_t play_image_frame_ = 0;

@@ -1,0 +1,127 @@
+#include "app/studio/session_view.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "app/cli/session_summary.h"
+#include "engine/calib/calibration.h"
+
+namespace recon::studio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInputs& inputs,
+                           const std::optional<calib::CalibrationReport>& calibration) {
+  const store::SessionManifest& m = session.manifest();
+  teach::WorkflowFacts f;
+  f.session_open = true;
+  f.cell_connected = true;  // simulated devices are always there
+  f.beacons_required = static_cast<int>(m.beacons.size());
+  f.beacons_assigned = static_cast<int>(m.beacon_assignments.size());
+  for (const BeaconSpec& b : m.beacons) {
+    if (!m.beacon_assignments.count(b.name)) f.unmarked_objects.push_back(b.object);
+  }
+  if (calibration) {
+    f.calibration_present = true;
+    f.calibration_passed = calibration->passed;
+    f.calibration_rmse_m = calibration->rmse_m;
+  }
+  for (const store::EpisodeEntry& e : session.demos()) {
+    if (e.flags.bad || !e.problem.empty()) continue;
+    ++f.demos;
+    f.demo_seconds += e.meta.teaching_seconds;
+  }
+  f.play_samples = static_cast<int>(session.PlaySamples());
+  f.recording_demos = inputs.recording_demos;
+  f.training = inputs.training;
+  const fs::path dir(session.dir());
+  for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
+    if (fs::exists(dir / "checkpoints" / (std::string(method) + ".ckpt"))) {
+      f.trained_methods.push_back(method);
+    }
+    if (fs::exists(dir / "rollouts" / (std::string(method) + ".json"))) {
+      f.evaluated_methods.push_back(method);
+    }
+  }
+  f.report_written = fs::exists(dir / "report" / "report.html");
+  return f;
+}
+
+ui::CalibrationView CalibrationView(const std::optional<calib::CalibrationReport>& calibration) {
+  ui::CalibrationView view;
+  if (!calibration) return view;
+  view.present = true;
+  view.passed = calibration->passed;
+  view.rmse_m = calibration->rmse_m;
+  view.p95_m = calibration->p95_m;
+  view.threshold_m = calibration->options.pass_rmse_m;
+  view.residual_m = calibration->residual_norm_m;
+  for (bool outlier : calibration->outlier) view.inlier.push_back(!outlier);
+  return view;
+}
+
+}  // namespace
+
+void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s) {
+  s.steps = teach::EvaluateWorkflow(facts);
+  for (int i = 0; i < teach::kNumSteps; ++i) {
+    s.can_open[i] = teach::CanOpen(facts, teach::kAllSteps[i]);
+  }
+  s.next_step = teach::NextStep(facts);
+}
+
+ui::StudioSnapshot BuildSessionView(const store::Session& session,
+                                    const SessionViewInputs& inputs) {
+  const store::SessionManifest& m = session.manifest();
+  ui::StudioSnapshot s;
+  s.session_open = true;
+  s.session_dir = session.dir();
+  s.world = m.world;
+  s.cell_kind = m.cell;
+  for (const store::DeviceEntry& d : m.devices) {
+    if (d.role == "teleop") continue;  // the teleops are listed below, from what is plugged in
+    s.devices.push_back({d.role, d.kind, d.detail, true, 0.0, ""});
+  }
+  s.devices.push_back({"teleop", "keyboard",
+                       "arrows move the arm, Page Up/Down raise and "
+                       "lower it, Space opens and closes the gripper",
+                       true, 0.0, ""});
+  s.devices.push_back(inputs.gamepad);
+  s.teleop_choices = {{"scripted", "Scripted", true, ""},
+                      {"keyboard", "Keyboard", true, ""},
+                      {"gamepad", "Gamepad", inputs.gamepad.connected, "no gamepad connected"}};
+  std::optional<calib::CalibrationReport> calibration;
+  if (!m.calibration_file.empty()) {
+    calibration = calib::LoadCalibration((fs::path(session.dir()) / m.calibration_file).string());
+  }
+  ShowWorkflow(Facts(session, inputs, calibration), s);
+  s.calibration = CalibrationView(calibration);
+  s.calibration.points_target = inputs.calibration_points;
+  for (const store::EpisodeEntry& e : session.demos()) {
+    s.episodes.push_back({e.name, static_cast<int>(e.meta.num_samples), e.meta.teaching_seconds,
+                          e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
+  }
+  s.play_samples = static_cast<int>(session.PlaySamples());
+  s.teacher_seconds = cli::TeachingLedgerJson(session)["recon_play_total_s"].get<double>();
+  for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
+    const auto r = cli::ReadJsonFile(
+        (fs::path(session.dir()) / "rollouts" / (std::string(method) + ".json")).string());
+    if (!r) continue;
+    ui::RolloutView view;
+    view.method = method;
+    view.label = r->value("label", std::string(method));
+    view.metric_name = r->value("metric_name", std::string());
+    view.metric_mean = r->value("metric_mean", 0.0);
+    view.metric_sem = r->value("metric_sem", 0.0);
+    view.has_success = r->value("has_success", false);
+    view.success_rate = r->value("success_rate", 0.0);
+    view.tests = r->value("tests", 0);
+    s.rollouts.push_back(view);
+  }
+  return s;
+}
+
+}  // namespace recon::studio

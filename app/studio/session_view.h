@@ -1,0 +1,28 @@
+#pragma once
+
+#include <vector>
+
+#include "engine/store/session.h"
+#include "engine/teach/workflow.h"
+#include "ui/studio/studio_snapshot.h"
+
+namespace recon::studio {
+
+/// What the session's side of the snapshot needs beyond the session's files: what runs now and
+/// what is plugged in.
+struct SessionViewInputs {
+  bool recording_demos = false;
+  bool training = false;
+  int calibration_points = 12;
+  ui::DeviceView gamepad;  ///< GamepadSource::View()
+};
+
+/// The workflow of `facts` into `s`: each step's state, which steps can open, the next one.
+void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s);
+
+/// The session's side of the snapshot: devices and teleops, workflow, calibration, episodes,
+/// play samples, teaching time and rollouts. Reads the calibration and the rollout files, so the
+/// studio rebuilds it when something changed, not at the camera's 30 Hz.
+ui::StudioSnapshot BuildSessionView(const store::Session& session, const SessionViewInputs& inputs);
+
+}  // namespace recon::studio
