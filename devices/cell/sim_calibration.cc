@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "devices/cell/calibration_collector.h"
 #include "devices/cell/scene_camera.h"
 #include "devices/render/mujoco_renderer.h"
 #include "devices/sim/hidden_uwb_frame.h"
@@ -86,19 +87,15 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
 
     const RgbImage frame =
         renderer->Render(scene, kCamera, options.camera_width, options.camera_height);
-    const std::vector<tags::TagDetection> detections = detector.Detect(frame);
-    const tags::TagDetection* found = nullptr;
-    for (const auto& det : detections) {
-      if (det.id == kBeaconTagId) found = &det;
-    }
-    if (found == nullptr) {
+    const std::optional<tags::TagLocation> located =
+        LocateTag(detector, locator, frame, kBeaconTagId);
+    if (!located) {
       char where[96];
       std::snprintf(where, sizeof(where), "(%.3f, %.3f)", truth.x(), truth.y());
       throw UserError(std::string("calibration point ") + std::to_string(i + 1) +
                       ": the camera does not see the beacon's tag " + std::to_string(kBeaconTagId) +
                       " at " + where);
     }
-    const tags::TagLocation located = locator.Locate(*found);
 
     std::vector<uwb::UwbReading> readings;
     for (int u = 0; u < options.updates_per_point; ++u)
@@ -117,10 +114,10 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
     }
     SimCalibrationSample sample;
     sample.true_table_m = truth;
-    sample.point.tag_m = located.position_table_m;
+    sample.point.tag_m = located->position_table_m;
     sample.point.uwb_m = uwb_sum / uwb_count;
     sample.uwb_readings = uwb_count;
-    tag_sq_error += (located.position_table_m - truth).squaredNorm();
+    tag_sq_error += (located->position_table_m - truth).squaredNorm();
     result.samples.push_back(sample);
     points.push_back(sample.point);
     if (progress) progress(i + 1, options.points);

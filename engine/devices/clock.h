@@ -1,5 +1,7 @@
 #pragma once
 
+#include <chrono>
+
 namespace recon::devices {
 
 /// Where device timestamps come from. The simulated cell uses a clock that advances with the
@@ -19,6 +21,17 @@ class ManualClock final : public Clock {
 
  private:
   double now_s_ = 0.0;
+};
+
+/// The host's steady clock, for real devices: seconds since this object was made.
+class SteadyClock final : public Clock {
+ public:
+  double NowSeconds() const override {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace recon::devices

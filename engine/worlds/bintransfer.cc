@@ -184,6 +184,7 @@ void BinTransfer::ResetToLayout(uint64_t seed, const Layout& layout) {
   noise_rng_.Seed(Rng::Derive(seed, kNoiseStream));
   play_rng_.Seed(Rng::Derive(seed, kPlayStream));
   DropObjects(scene_, *arm_, layout, Ur5Arm::kHome);
+  safety_.Stopped();
   std::array<Eigen::Vector3d, kNumObjects> positions;
   for (int i = 0; i < kNumObjects; ++i) positions[i] = ObjectPosition(i);
   target_ = RightMost(positions);
@@ -247,7 +248,8 @@ void BinTransfer::Step(const std::vector<float>& u) {
   }
   Ur5Joints qd;
   for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
-  arm_->CommandJointVelocities(qd);
+  arm_->CommandJointVelocities(
+      safety_.Apply(arm_->JointPositions(), qd, kControlPeriod_s).command_rad_s);
   const int checks = static_cast<int>(std::lround(kControlPeriod_s / kGripperCheckPeriod_s));
   for (int c = 0; c < checks; ++c) {
     arm_->Step(kGripperCheckPeriod_s);

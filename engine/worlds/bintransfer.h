@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
+#include "engine/safety/safety_filter.h"
 #include "engine/worlds/mujoco_model.h"
 #include "engine/worlds/ur5_arm.h"
 #include "engine/worlds/world.h"
@@ -134,6 +135,9 @@ class BinTransfer : public World {
   MujocoModel& scene() { return scene_; }
   Ur5Arm& arm() { return *arm_; }
 
+  /// What the safety envelope did to this world's commands since it was made.
+  const safety::SafetyStats& safety_stats() const { return safety_.stats(); }
+
  private:
   enum class Phase { kApproach, kDescend, kLift, kTransfer, kLower, kDone };
 
@@ -151,6 +155,8 @@ class BinTransfer : public World {
   double noise_sigma_;
   MujocoModel scene_;
   std::unique_ptr<Ur5Arm> arm_;
+  // Every velocity command passes the safety envelope (BinTransferSafetyLimits).
+  safety::SafetyFilter safety_;
   // The scratch scene play layouts settle in, made on first use.
   std::unique_ptr<MujocoModel> play_scene_;
   std::unique_ptr<Ur5Arm> play_arm_;

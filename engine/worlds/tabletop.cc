@@ -138,6 +138,7 @@ void Tabletop::PlaceToastAndArm() {
   toast[3] = 1.0;
   toast[4] = toast[5] = toast[6] = 0.0;
   arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward
+  safety_.Stopped();
 }
 
 void Tabletop::FinishReset() {
@@ -198,7 +199,8 @@ void Tabletop::Step(const std::vector<float>& u) {
   }
   Ur5Joints qd;
   for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
-  arm_->CommandJointVelocities(qd);
+  arm_->CommandJointVelocities(
+      safety_.Apply(arm_->JointPositions(), qd, kControlPeriod_s).command_rad_s);
   arm_->CommandGripper(u[Ur5Arm::kJoints] > 0.5f);
   arm_->Step(kControlPeriod_s);
   Render();

@@ -7,6 +7,7 @@
 
 #include "engine/core/image.h"
 #include "engine/core/rng.h"
+#include "engine/safety/safety_filter.h"
 #include "engine/worlds/mujoco_model.h"
 #include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/ur5_arm.h"
@@ -102,6 +103,9 @@ class Tabletop : public World {
   MujocoModel& scene() { return scene_; }
   Ur5Arm& arm() { return *arm_; }
 
+  /// What the safety envelope did to this world's commands since it was made.
+  const safety::SafetyStats& safety_stats() const { return safety_.stats(); }
+
  private:
   void PlaceMocap(int body, const Eigen::Vector3d& position);
   Eigen::Vector3d DrawBowlPosition(Rng& rng) const;
@@ -118,6 +122,8 @@ class Tabletop : public World {
   std::unique_ptr<SceneRenderer> renderer_;
   MujocoModel scene_;
   std::unique_ptr<Ur5Arm> arm_;
+  // Every velocity command, the expert's, a teacher's or a policy's, passes the safety envelope.
+  safety::SafetyFilter safety_;
   Rng rng_{0};
   int plate_body_ = -1, bowl_body_ = -1, toast_body_ = -1, beacon_site_ = -1;
   int toast_qpos_ = -1;

@@ -9,6 +9,7 @@
 #include "devices/render/mujoco_renderer.h"
 #include "devices/tags/tag_detector.h"
 #include "engine/core/error.h"
+#include "engine/core/rng.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::worlds {
@@ -98,6 +99,31 @@ TEST(TabletopTest, ExpertPutsTheToastOnThePlate) {
     EXPECT_EQ(details.at("grip_nearer_bowl"), 0.0) << "the expert ends above the plate";
   }
   EXPECT_EQ(succeeded, 10);
+  // The expert stays well inside the safety envelope: its demonstrations are what it meant.
+  EXPECT_EQ(world->safety_stats().changed, 0) << "of " << world->safety_stats().commands;
+  EXPECT_EQ(world->safety_stats().commands, 10 * world->EpisodeLength());
+}
+
+TEST(TabletopTest, ASafetyEnvelopeStopsAPolicyThatOutputsGarbage) {
+  auto world = MakeTabletop("none");
+  world->Reset(7);
+  Rng rng(31);  // seed 31: a policy gone wrong for a whole episode
+  for (int t = 0; t < world->EpisodeLength(); ++t) {
+    std::vector<float> u(7);
+    for (float& x : u) {
+      const double kind = rng.Uniform(0, 1);
+      x = kind < 0.1   ? std::nanf("")
+          : kind < 0.4 ? static_cast<float>(rng.Uniform(-1e30, 1e30))
+                       : static_cast<float>(rng.Uniform(-3, 3));
+    }
+    world->Step(u);
+    // The servo lags its command by a few millimetres; the floor is 5 mm over the table.
+    ASSERT_GT(world->arm().GripPosition().z(), 0.0) << "step " << t;
+  }
+  const safety::SafetyStats& stats = world->safety_stats();
+  EXPECT_GT(stats.non_finite, 0);
+  EXPECT_GT(stats.velocity, 0);
+  EXPECT_GT(stats.changed, world->EpisodeLength() / 2);
 }
 
 TEST(TabletopTest, RecordingStopsWhenTheTeacherIsDone) {

@@ -153,6 +153,7 @@ TEST(BinTransferTest, ExpertSucceedsInAtLeast95PercentOf200Layouts) {
   constexpr int kSettledSteps = 10;
   std::atomic<int> successes{0};
   std::atomic<int> completion_steps{0};
+  std::atomic<int64_t> commands{0}, changed{0};
   auto run = [&](int first_seed) {
     BinTransfer world("none", 0.0);
     for (int seed = first_seed; seed < kSeeds; seed += 2) {
@@ -168,6 +169,8 @@ TEST(BinTransferTest, ExpertSucceedsInAtLeast95PercentOf200Layouts) {
         completion_steps += done_at;
       }
     }
+    commands += world.safety_stats().commands;
+    changed += world.safety_stats().changed;
   };
   std::thread other(run, 1);
   run(0);
@@ -176,6 +179,8 @@ TEST(BinTransferTest, ExpertSucceedsInAtLeast95PercentOf200Layouts) {
   std::printf("bintransfer expert: %d/%d succeeded (%.1f%%), %.1f steps to complete on average\n",
               successes.load(), kSeeds, 100.0 * rate,
               static_cast<double>(completion_steps) / std::max(1, successes.load()));
+  std::printf("safety envelope: changed %lld of %lld expert commands\n",
+              static_cast<long long>(changed.load()), static_cast<long long>(commands.load()));
   EXPECT_GE(rate, 0.95);
 }
 
