@@ -2,10 +2,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/cli/camera_command.h"
+#include "app/cli/devices_command.h"
 #include "app/cli/cell_commands.h"
 #include "app/cli/experiment_command.h"
 #include "app/cli/record_command.h"
 #include "app/cli/report_command.h"
+#include "app/cli/robot_command.h"
 #include "app/cli/run_main.h"
 #include "app/cli/session_command.h"
 #include "app/cli/train_commands.h"
@@ -28,5 +31,8 @@ int main(int argc, char** argv) {
   recon::cli::AddSessionCommands(app);
   recon::cli::AddReportCommand(app);
   recon::cli::AddUwbCommand(app);
+  recon::cli::AddCameraCommand(app);
+  recon::cli::AddRobotCommand(app);
+  recon::cli::AddDevicesCommand(app);
   return recon::cli::RunMain(app, argc, argv, "recon");
 }

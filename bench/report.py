@@ -25,6 +25,9 @@ TARGETS = {
     "studio_frames_per_second": (30.0, "frames/s", "min"),
     "studio_frames_per_second_while_training": (30.0, "frames/s", "min"),
     "studio_frames_per_second_playing_rollouts": (30.0, "frames/s", "min"),
+    # Issue 6: DWM1001 beacons (uwb_bench).
+    "uwb_lec_lines_per_second": (100000.0, "lines/s", "min"),
+    "uwb_pty_line_to_reading_median": (2000.0, "us", "max"),
 }
 # Rates the cell benchmarks report as counters: result name -> (benchmark, counter, unit).
 COUNTERS = {
@@ -44,6 +47,12 @@ COUNTERS = {
     "studio_frames_per_second_playing_rollouts":
         ("BM_StudioFramePlayingRollouts/min_time:2.000/real_time", "frames_per_second",
          "frames/s"),
+    "uwb_lec_lines_per_second": ("BM_LecParseLines", "lines_per_s", "lines/s"),
+    "uwb_tlv_frames_per_second": ("BM_TlvParseFrames", "frames_per_s", "frames/s"),
+    "uwb_pty_line_to_reading_median":
+        ("BM_PtyLineToReadingLatency/iterations:2000/real_time", "median_latency_us", "us"),
+    "uwb_pty_line_to_reading_p99":
+        ("BM_PtyLineToReadingLatency/iterations:2000/real_time", "p99_latency_us", "us"),
 }
 # Our stepping against a bare mj_step loop on the same model: (ours, bare) benchmark names.
 OVERHEADS = {
@@ -65,7 +74,8 @@ def medians(bench_file):
         scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
         rows[b["run_name"]] = b["real_time"] * scale
         counters[b["run_name"]] = {k: v for k, v in b.items() if k.endswith("_per_s")
-                                   or k.endswith("_per_second") or k.endswith("_MB")}
+                                   or k.endswith("_per_second") or k.endswith("_MB")
+                                   or k.endswith("_us")}
     return rows, counters
 
 

@@ -10,6 +10,7 @@ pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 # Headless rendering: Mesa's EGL with a desktop-GL (compatibility profile) context.
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 find_package(apriltag REQUIRED)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d)
 # Sessions: robomimic-layout HDF5 through the C library (Debian: libhdf5-dev, serial build).
 find_package(HDF5 REQUIRED COMPONENTS C)
 if(NOT TARGET hdf5::hdf5)

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "app/cli/device_calibrate.h"
 #include "devices/cell/sim_calibration.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/calib/calibration.h"
@@ -64,6 +65,7 @@ void RunRender(const RenderFlags& flags) {
 
 struct CalibrateFlags {
   bool sim = false;
+  DeviceCalibrateFlags device;
   int points = 12;
   uint64_t seed = 1;
   std::string dimension = "2d";
@@ -72,9 +74,6 @@ struct CalibrateFlags {
 };
 
 void RunCalibrate(const CalibrateFlags& flags) {
-  if (!flags.sim) {
-    throw UserError("calibrate needs --sim: real UWB and camera drivers are not connected yet");
-  }
   cell::SimCalibrationOptions options;
   options.points = flags.points;
   options.seed = flags.seed;
@@ -85,6 +84,15 @@ void RunCalibrate(const CalibrateFlags& flags) {
     options.calibration.dimension = calib::FitDimension::k3D;
   } else {
     throw UserError("--dim must be 2d or 3d (got '" + flags.dimension + "')");
+  }
+  if (!flags.sim) {
+    const calib::CalibrationReport report =
+        RunDeviceCalibrate(flags.device, flags.points, options.calibration);
+    if (!flags.out.empty()) {
+      calib::SaveCalibration(report, flags.out);
+      std::printf("wrote %s\n", flags.out.c_str());
+    }
+    return;
   }
   std::printf("recon calibrate --sim: %d beacon poses in the simulated tabletop cell, seed %llu\n",
               flags.points, static_cast<unsigned long long>(flags.seed));
@@ -134,6 +142,40 @@ void AddCellCommands(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   calibrate->add_option("--out", cal_flags->out, "save the calibration (JSON) here");
+  DeviceCalibrateFlags& device = cal_flags->device;
+  calibrate->add_option("--camera", device.camera,
+                        "real devices: the camera (/dev/videoN, index, video file, image folder)");
+  calibrate
+      ->add_option("--camera-calibration", device.camera_calibration,
+                   "real devices: the camera's OpenCV calibration YAML")
+      ->check(CLI::ExistingFile);
+  calibrate
+      ->add_option("--table-tags", device.table_tags,
+                   "real devices: JSON of the AprilTags taped to the table (ids, places)")
+      ->check(CLI::ExistingFile);
+  calibrate->add_option("--beacon-port", device.beacon_ports,
+                        "real devices: a DWM1001's serial port (repeatable)");
+  calibrate->add_option("--name", device.names, "real devices: NODE_ID=name (repeatable)");
+  calibrate->add_option("--beacon", device.beacon, "the beacon that carries the tag, by name");
+  calibrate->add_option("--mode", device.mode, "DWM1001 mode: lec or tlv")->capture_default_str();
+  calibrate->add_option("--beacon-tag-id", device.beacon_tag_id, "the beacon's AprilTag id")
+      ->capture_default_str();
+  calibrate
+      ->add_option("--beacon-tag-size", device.beacon_tag_size_m, "its black border's side (m)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  calibrate
+      ->add_option("--beacon-tag-height", device.beacon_tag_height_m,
+                   "its face's height over the table (m)")
+      ->capture_default_str();
+  calibrate->add_option("--frames", device.frames, "camera frames averaged per pose")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  calibrate->add_option("--uwb-samples", device.uwb_samples, "beacon positions averaged per pose")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  calibrate->add_flag("--no-wait", device.no_wait,
+                      "do not wait for Enter between poses (the beacon is moved by a script)");
   calibrate->callback([cal_flags] { RunCalibrate(*cal_flags); });
 }
 

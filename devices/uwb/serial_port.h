@@ -25,6 +25,8 @@ class SerialPort {
 
   const std::string& path() const { return path_; }
   bool open() const { return fd_ >= 0; }
+  /// The file descriptor, to wait on several ports with poll(2); -1 when closed. Do not read it.
+  int fd() const { return fd_; }
   const std::string& last_error() const { return last_error_; }
 
  private:

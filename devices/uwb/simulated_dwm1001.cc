@@ -15,9 +15,7 @@ SimulatedDwm1001::SimulatedDwm1001(SimulatedDwm1001Options options)
   }
 }
 
-std::string SimulatedDwm1001::NextUpdate(const Eigen::Vector3d& table_position_m) {
-  // Draw every random number of the update first, so the stream does not depend on which
-  // failure happens (a dropped line costs the same draws as a good one).
+UwbReading SimulatedDwm1001::NextReading(const Eigen::Vector3d& table_position_m) {
   const Eigen::Vector3d true_uwb = options_.table_to_uwb.Apply(table_position_m);
   const double sigma = options_.position_noise_m;
   const Eigen::Vector3d estimate =
@@ -35,6 +33,13 @@ std::string SimulatedDwm1001::NextUpdate(const Eigen::Vector3d& table_position_m
   reading.y_m = estimate.y();
   reading.z_m = estimate.z();
   reading.quality = 50 + static_cast<int>(rng_.UniformInt(51));
+  return reading;
+}
+
+std::string SimulatedDwm1001::NextUpdate(const Eigen::Vector3d& table_position_m) {
+  // Draw every random number of the update first, so the stream does not depend on which
+  // failure happens (a dropped line costs the same draws as a good one).
+  const UwbReading reading = NextReading(table_position_m);
   const double fate = rng_.Uniform();
   const uint64_t cut = rng_.Next();
 

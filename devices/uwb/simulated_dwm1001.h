@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "devices/uwb/uwb_reading.h"
 #include "engine/calib/rigid_fit.h"
 #include "engine/core/rng.h"
 
@@ -37,6 +38,9 @@ class SimulatedDwm1001 {
   /// The bytes of one 10 Hz update for a beacon at `table_position_m`: a `DIST,...,POS,...`
   /// line, nothing (dropped), or a garbled line (an echo fragment glued to it, or a cut line).
   std::string NextUpdate(const Eigen::Vector3d& table_position_m);
+  /// The location engine's result for a beacon at `table_position_m`, with the configured noise
+  /// but never dropped or garbled: what TLV loc_get reports (FakeDwm1001::Options::next_reading).
+  UwbReading NextReading(const Eigen::Vector3d& table_position_m);
 
   int64_t dropped() const { return dropped_; }
   int64_t garbled() const { return garbled_; }
