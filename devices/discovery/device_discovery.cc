@@ -117,7 +117,6 @@ FoundDevice ProbeRobot(const std::string& where, const DiscoveryOptions& options
   try {
     robot::RtdeClient client(rtde);
     found.identity = "UR controller " + client.controller_version().ToString();
-    found.usable = true;
     found.detail = client.WaitForData(1.0) ? "RTDE handshake done, state streaming"
                                            : "RTDE handshake done, but no state arrived";
     found.usable = client.connected();

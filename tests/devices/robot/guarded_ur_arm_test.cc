@@ -98,10 +98,13 @@ TEST(GuardedUrArmTest, TheEmergencyStopHaltsTheRobotAndRefusesMotion) {
     arm.CommandJointVelocities({0.0, 0.3, 0, 0, 0, 0});
     Sleep(0.05);
   }
+  const auto before = controller.last_speedj();
+  ASSERT_TRUE(before.has_value());
   arm.EngageEmergencyStop("test");
   const int64_t commands = controller.commands_received();
   for (int i = 0; i < 5; ++i) {
-    arm.CommandJointVelocities({0.0, 0.3, 0, 0, 0, 0});
+    // Slower than before, so a speedj that got through would differ from the last one.
+    arm.CommandJointVelocities({0.0, 0.2, 0, 0, 0, 0});
     arm.CommandGripper(true);
     Sleep(0.05);
   }
@@ -111,6 +114,7 @@ TEST(GuardedUrArmTest, TheEmergencyStopHaltsTheRobotAndRefusesMotion) {
   // Only stops went out after the e-stop (one per refused command), no speedj.
   const auto last = controller.last_speedj();
   ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(last->velocity_rad_s, before->velocity_rad_s) << "a speedj was sent after the e-stop";
   EXPECT_GT(controller.commands_received(), commands);
   EXPECT_EQ(arm.stats().emergency_stop, 5);
 }
