@@ -157,6 +157,11 @@ int main(int argc, char** argv) {
   app.add_option("--world", flags.options.world, "task of a new session")->capture_default_str();
   app.add_option("--seed", flags.options.seed, "seed of a new session")->capture_default_str();
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
+  app.add_option("--dev", flags.options.dev_dir,
+                 "device folder the Cell screen lists beacons, cameras and gamepads from")
+      ->capture_default_str();
+  app.add_option("--robot-host", flags.options.robot_hosts,
+                 "a UR controller the Cell screen lists (host or host:port; repeatable)");
   app.add_flag("--fast", flags.fast,
                "record demonstrations as fast as the simulation runs (default: 10 Hz, real time)");
   app.add_option("--train-steps", flags.options.train_steps, "training steps per method")

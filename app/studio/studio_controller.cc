@@ -10,6 +10,7 @@
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
+#include "app/studio/device_scanner.h"
 #include "app/studio/gamepad_source.h"
 #include "app/studio/job_thread.h"
 #include "app/studio/recent_sessions.h"
@@ -18,6 +19,7 @@
 #include "app/studio/studio_jobs.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
+#include "engine/safety/guarded_arm.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
 #include "engine/teach/play_recorder.h"
@@ -38,7 +40,8 @@ class StudioController::Cell {
   explicit Cell(const StudioOptions& options)
       : options_(options),
         recent_(options.recent_sessions_file.empty() ? RecentSessions::DefaultPath()
-                                                     : options.recent_sessions_file) {
+                                                     : options.recent_sessions_file),
+        scanner_(ScanOptions(options), std::chrono::milliseconds(options.device_scan_ms)) {
     if (!recent_.problem().empty()) AddError(recent_.problem());
   }
 
@@ -116,7 +119,9 @@ class StudioController::Cell {
     Changed();  // whatever it does (or fails to do), the workflow is re-read
     const bool needs_session = !std::holds_alternative<ui::OpenSession>(command) &&
                                !std::holds_alternative<ui::ShowSessionPicker>(command) &&
-                               !std::holds_alternative<ui::DismissErrors>(command);
+                               !std::holds_alternative<ui::DismissErrors>(command) &&
+                               !std::holds_alternative<ui::EmergencyStop>(command) &&
+                               !std::holds_alternative<ui::RescanDevices>(command);
     if (needs_session && !session_) throw UserError("open or create a session first");
     std::visit([this](const auto& c) { Apply(c); }, command);
   }
@@ -173,6 +178,8 @@ class StudioController::Cell {
       ShowWorkflow(teach::WorkflowFacts{}, s);  // the steps say they wait for a session
       s.picking_session = true;
       s.recent_sessions = recent_.entries();
+      ShowConnected(s);
+      ShowSafety(s);
       s.errors = errors_;
       s.status = status_;
       return;
@@ -206,6 +213,8 @@ class StudioController::Cell {
     s.play_image_frame = play_image_frame_;
     s.play_reading = play_reading_;
     ShowDeviceHealth(s);
+    ShowConnected(s);
+    ShowSafety(s);
     s.training = job.name == "training" ? job.training : last_training_;
     s.rollouts_running = job.running && job.name == "rollouts";
     s.rollout_tests = options_.rollout_tests;
@@ -295,6 +304,33 @@ class StudioController::Cell {
       b.dropout_fraction = beacon.dropout_fraction;
       b.noise_m = beacon.noise;
     }
+  }
+
+  static discovery::DiscoveryOptions ScanOptions(const StudioOptions& options) {
+    discovery::DiscoveryOptions scan;
+    scan.dev_dir = options.dev_dir;
+    scan.robot_hosts = options.robot_hosts;
+    return scan;
+  }
+
+  /// What is plugged in, from the scanner's latest pass.
+  void ShowConnected(ui::StudioSnapshot& s) const {
+    uint64_t scans = 0;
+    s.connected = scanner_.Latest(&scans);
+    s.connected_scanned = scans > 0;
+    s.connected_where = scanner_.Where();
+  }
+
+  /// The envelope the arm's commands pass, what it changed so far, and the e-stop.
+  void ShowSafety(ui::StudioSnapshot& s) const {
+    s.safety.estop = estop_;
+    s.safety.estop_reason = estop_reason_;
+    const auto* tabletop = dynamic_cast<const worlds::Tabletop*>(world_.get());
+    if (tabletop == nullptr) return;
+    const safety::SafetyStats& stats = tabletop->safety_stats();
+    s.safety.commands = stats.commands;
+    s.safety.changed = stats.changed;
+    s.safety.limits = safety::DescribeLimits(safety::SafetyLimits{});
   }
 
   /// The latest play sample, for the Play screen.
@@ -392,6 +428,13 @@ class StudioController::Cell {
   void RequireIdle(const char* what) const {
     if (Busy()) throw UserError(std::string("cannot ") + what + " while something else runs");
   }
+  /// For whatever moves the arm.
+  void RequireNoEmergencyStop(const char* what) const {
+    if (estop_) {
+      throw UserError(std::string("cannot ") + what + ": the e-stop is engaged (" + estop_reason_ +
+                      "); release it first");
+    }
+  }
 
   void Apply(const ui::OpenStep& c) { current_step_ = c.step; }
   void Apply(const ui::AssignBeacon& c) {
@@ -417,6 +460,7 @@ class StudioController::Cell {
   void Apply(const ui::CancelCalibration&) { jobs_.Cancel(); }
   void Apply(const ui::StartRecording&) {
     RequireIdle("record");
+    RequireNoEmergencyStop("record");
     StartDemo(
         store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
     status_ = teleop_mode_ == "scripted"
@@ -438,6 +482,7 @@ class StudioController::Cell {
   }
   void Apply(const ui::ReRecordEpisode& c) {
     RequireIdle("re-record");
+    RequireNoEmergencyStop("re-record");
     const store::EpisodeEntry& e = session_->Find(c.name);
     StartDemo(e.meta.seed);
     replace_ = c.name;
@@ -449,6 +494,7 @@ class StudioController::Cell {
   }
   void Apply(const ui::RecordPlay& c) {
     RequireIdle("record play data");
+    RequireNoEmergencyStop("record play data");
     if (c.samples < 1) throw UserError("ask for at least one play sample");
     play_target_ = c.samples;
     play_done_ = 0;
@@ -511,6 +557,7 @@ class StudioController::Cell {
   void Apply(const ui::CancelTraining&) { jobs_.Cancel(); }
   void Apply(const ui::RunRollouts& c) {
     RequireIdle("roll out");
+    RequireNoEmergencyStop("roll out");
     const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
     jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
       RollOutTrainedMethods(*session_, tests);
@@ -527,6 +574,33 @@ class StudioController::Cell {
     status_ = "Wrote " + report_path_ + ".";
   }
   void Apply(const ui::DismissErrors&) { errors_.clear(); }
+  void Apply(const ui::RescanDevices&) { scanner_.RescanNow(); }
+  void Apply(const ui::EmergencyStop& c) {
+    if (!c.engage) {
+      estop_ = false;
+      estop_reason_.clear();
+      status_ = "E-stop released.";
+      return;
+    }
+    estop_ = true;
+    estop_reason_ = c.reason.empty() ? "e-stop pressed" : c.reason;
+    // The arm stops now. The simulated arm moves only while a recording steps it, so ending the
+    // recording stops it; nothing half-taught under an e-stop is kept.
+    teleop_input_ = {};
+    teleop_command_ = {};
+    std::string stopped;
+    if (recorder_ && recorder_->recording()) {
+      stopped = "; the demonstration being recorded was discarded";
+      recorder_.reset();
+      replace_.reset();
+    }
+    if (play_ && play_->recording()) {
+      stopped = "; play recording stopped (" + std::to_string(play_done_) + " samples kept)";
+      play_.reset();
+      play_target_ = play_done_;
+    }
+    status_ = "E-STOP: " + estop_reason_ + stopped + ".";
+  }
 
   static constexpr auto kControlPeriod = std::chrono::milliseconds(100);  // the arm's 10 Hz
   static constexpr double kTeleopSpeed_m_s = 0.1;
@@ -565,6 +639,9 @@ class StudioController::Cell {
   std::string status_;
   std::string report_path_;
   uint64_t camera_frames_ = 0;
+  bool estop_ = false;
+  std::string estop_reason_;
+  DeviceScanner scanner_;
 };
 
 StudioController::StudioController(const StudioOptions& options)

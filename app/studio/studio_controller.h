@@ -33,6 +33,10 @@ struct StudioOptions {
   int calibration_points = 12;
   int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)
   int view_height = 240;
+  /// Where the Cell screen looks for plugged-in devices, and how often.
+  std::string dev_dir = "/dev";
+  std::vector<std::string> robot_hosts;  ///< UR controllers to list, "host[:port]"
+  int device_scan_ms = 2000;
 };
 
 /// The engine side of the studio: owns the session, the simulated cell and the workers, applies

@@ -61,14 +61,17 @@ void GuardedArm::StopLocked() {
   arm_.Stop();
 }
 
-std::string GuardedArm::Describe() const {
-  const SafetyLimits& l = filter_.envelope().limits();
+std::string DescribeLimits(const SafetyLimits& l) {
   char text[160];
   std::snprintf(text, sizeof(text),
-                ", safety envelope %.3g rad/s, %.3g rad/s^2, floor %.0f mm, watchdog %.0f ms",
+                "%.3g rad/s, %.3g rad/s^2, tool floor %.0f mm, watchdog %.0f ms",
                 l.max_velocity_rad_s[0], l.max_acceleration_rad_s2[0], l.tool_floor_m * 1000,
                 l.watchdog_timeout_s * 1000);
-  return arm_.Describe() + text;
+  return text;
+}
+
+std::string GuardedArm::Describe() const {
+  return arm_.Describe() + ", safety envelope " + DescribeLimits(filter_.envelope().limits());
 }
 
 bool GuardedArm::CheckWatchdog() {

@@ -9,6 +9,9 @@
 
 namespace recon::safety {
 
+/// The limits in a few words, e.g. "1 rad/s, 5 rad/s^2, tool floor 5 mm, watchdog 200 ms".
+std::string DescribeLimits(const SafetyLimits& limits);
+
 /// Any arm behind the safety envelope: every velocity command is judged by SafetyEnvelope
 /// against the arm's current state before it is passed on; a watchdog stops the arm when
 /// commands stop coming; an e-stop, once engaged, turns every command into a stop until it is
@@ -33,7 +36,7 @@ class GuardedArm final : public devices::Arm {
   void CommandGripper(bool close) override;
   void Stop() override;
   /// The arm's description and the envelope's limits, e.g. "simulated UR5 (...), safety
-  /// envelope 1 rad/s, 5 rad/s^2, floor 5 mm, watchdog 200 ms".
+  /// envelope 1 rad/s, 5 rad/s^2, tool floor 5 mm, watchdog 200 ms".
   std::string Describe() const override;
 
   /// Stops the arm when the last velocity command is older than the watchdog timeout and was

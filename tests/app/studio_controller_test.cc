@@ -179,6 +179,74 @@ TEST_F(StudioControllerTest, AGamepadDrivesTheArmAndItsUnpluggingIsReported) {
   EXPECT_TRUE(listed);
 }
 
+// The e-stop ends a recording without keeping it, refuses whatever would move the arm until it
+// is released, and works with no session open; the envelope's count shows on the Cell screen.
+TEST_F(StudioControllerTest, TheEStopEndsARecordingAndRefusesMotionUntilReleased) {
+  StudioOptions options = Options();
+  StudioController controller(options);
+  controller.Push(ui::SetTeleopMode{"keyboard"});
+  controller.Push(ui::StartRecording{});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  EXPECT_EQ(s.safety.limits, "1 rad/s, 5 rad/s^2, tool floor 5 mm, watchdog 200 ms");
+  controller.Push(ui::EmergencyStop{true, "test"});
+  s = WaitFor(controller, [](const auto& now) { return now.safety.estop; });
+  EXPECT_FALSE(s.recording);
+  EXPECT_TRUE(s.episodes.empty());
+  EXPECT_EQ(s.safety.estop_reason, "test");
+  EXPECT_THAT(s.status, HasSubstr("discarded"));
+
+  controller.Push(ui::SetTeleopMode{"scripted"});
+  controller.Push(ui::StartRecording{});
+  controller.Push(ui::RecordPlay{5});
+  controller.Push(ui::RunRollouts{1});
+  s = WaitFor(controller, [](const auto& now) { return now.errors.size() >= 3; });
+  ASSERT_EQ(s.errors.size(), 3u);
+  EXPECT_THAT(s.errors[0], HasSubstr("cannot record: the e-stop is engaged (test)"));
+  EXPECT_THAT(s.errors[1], HasSubstr("cannot record play data: the e-stop is engaged"));
+  EXPECT_THAT(s.errors[2], HasSubstr("cannot roll out: the e-stop is engaged"));
+  EXPECT_FALSE(s.recording);
+  EXPECT_FALSE(s.recording_play);
+
+  controller.Push(ui::EmergencyStop{false, ""});
+  controller.Push(ui::StartRecording{});
+  s = WaitFor(controller, [](const auto& now) { return !now.episodes.empty() && !now.recording; });
+  EXPECT_FALSE(s.safety.estop);
+  ASSERT_EQ(s.episodes.size(), 1u);
+  // Every command of the demonstration passed the envelope (the expert's are all inside it).
+  EXPECT_GE(s.safety.commands, s.episodes[0].samples);
+  EXPECT_EQ(s.safety.changed, 0);
+
+  StudioController picker(Options(""));
+  picker.Push(ui::EmergencyStop{true, "no session"});
+  s = WaitFor(picker, [](const auto& now) { return now.safety.estop; });
+  EXPECT_TRUE(s.errors.empty());
+}
+
+// The Cell screen's list of what is plugged in follows the device folder: a port that appears is
+// listed at the next scan (or at once on Rescan), with no session needed.
+TEST_F(StudioControllerTest, TheCellScreenListsWhatIsPluggedIn) {
+  const fs::path dev = dir_ / "dev";
+  fs::create_directories(dev / "input");
+  std::ofstream(dev / "ttyACM0").put('\n');
+  std::ofstream(dev / "video0").put('\n');
+  StudioOptions options = Options("");
+  options.dev_dir = dev.string();
+  options.device_scan_ms = 60000;  // only Rescan finds the new port within the test's time
+  StudioController controller(options);
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.connected_scanned; });
+  EXPECT_EQ(s.connected_where, dev.string());
+  ASSERT_EQ(s.connected.size(), 2u);
+  EXPECT_EQ(s.connected[0].kind, "beacon");
+  EXPECT_EQ(s.connected[0].path, (dev / "ttyACM0").string());
+  EXPECT_EQ(s.connected[1].kind, "camera");
+  std::ofstream(dev / "ttyUSB3").put('\n');
+  controller.Push(ui::RescanDevices{});
+  s = WaitFor(
+      controller, [](const auto& now) { return now.connected.size() == 3; }, 10);
+  ASSERT_EQ(s.connected.size(), 3u);
+  EXPECT_EQ(s.connected[1].path, (dev / "ttyUSB3").string());
+}
+
 // A scripted demonstration recorded in the studio is the one `recon record` records for the same
 // scenario seed: the live view's beacon readings do not disturb the recording's noise.
 TEST_F(StudioControllerTest, AStudioDemonstrationIsReproducibleFromItsSeed) {

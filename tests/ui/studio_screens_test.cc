@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <imgui.h>
+
 #include <variant>
 
 #include "engine/core/error.h"
@@ -78,6 +80,56 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<ScreenCase>& param) {
       return std::string(param.param.name);
     });
+
+TEST(StudioScreenTest, TheEmergencyStopShowsOnEveryScreenAndMatchesItsGolden) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  s.safety.estop = true;
+  s.safety.estop_reason = "e-stop button";
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("estop")));
+}
+
+TEST(StudioCommandTest, TheEStopButtonAndEscapeEngageItAndReleaseReleasesIt) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("E-STOP (Esc)");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<EmergencyStop>(commands[0]));
+  EXPECT_TRUE(std::get<EmergencyStop>(commands[0]).engage);
+
+  harness.driver().Press(ImGuiKey_Escape);
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<EmergencyStop>(commands[0]));
+  EXPECT_TRUE(std::get<EmergencyStop>(commands[0]).engage);
+  EXPECT_EQ(std::get<EmergencyStop>(commands[0]).reason, "Escape pressed");
+
+  StudioSnapshot stopped = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  stopped.safety.estop = true;
+  stopped.safety.estop_reason = "Escape pressed";
+  harness.Show(stopped);
+  harness.Commands();
+  EXPECT_THROW(harness.driver().Click("E-STOP (Esc)"), UserError);     // replaced by Release
+  EXPECT_THROW(harness.driver().Click("Start recording"), UserError);  // disabled until then
+  harness.driver().Press(ImGuiKey_Escape);  // already engaged: nothing new to say
+  EXPECT_TRUE(harness.Commands().empty());
+  harness.driver().Click("Release e-stop");
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  ASSERT_TRUE(std::holds_alternative<EmergencyStop>(commands[0]));
+  EXPECT_FALSE(std::get<EmergencyStop>(commands[0]).engage);
+}
+
+TEST(StudioCommandTest, TheCellScreenListsWhatIsPluggedInAndRescans) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kCellUp, teach::Step::kCell));
+  harness.driver().Click("Rescan");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<RescanDevices>(commands[0]));
+}
 
 TEST(StudioCommandTest, ClickingAStepOpensItAndABlockedStepDoesNothing) {
   StudioHarness harness;
@@ -240,7 +292,8 @@ TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
   EXPECT_TRUE(up) << "page up";
   EXPECT_TRUE(grip) << "space";
   EXPECT_TRUE(stop) << "enter";
-  // The same keys with the scripted teacher recording send nothing.
+  // The same keys with the scripted teacher recording send nothing: while a demonstration
+  // records, the arrows do not move the keyboard focus to a button that Space would then press.
   s.teleop = "scripted";
   harness.Show(s);
   harness.Commands();

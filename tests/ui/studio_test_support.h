@@ -83,6 +83,14 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
         {"beacons", "simulated", "DWM1001 lec lines through the serial parser", true, 10.0, ""},
         {"teleop", "keyboard", "arrows move the arm", true, 0.0, ""},
         {"teleop", "gamepad", "none found", false, 0.0, ""}};
+    s.connected_scanned = true;
+    s.connected_where = "/dev";
+    s.connected = {{"beacon", "/dev/ttyACM0", "SEGGER_J-Link_000760012345", true, "not probed"},
+                   {"camera", "/dev/video0", "", true, "not probed"},
+                   {"gamepad", "/dev/input/js0", "Xbox Wireless Controller", true, "not probed"}};
+    s.safety.limits = "1 rad/s, 5 rad/s^2, tool floor 5 mm, watchdog 200 ms";
+    s.safety.commands = 1214;
+    s.safety.changed = 3;
     s.camera = SyntheticCamera();
     s.camera_frame = 1;
     s.objects = {{"plate", 110, 60}, {"bowl", 45, 35}, {"toast", 49, 86}};

@@ -8,6 +8,45 @@
 
 namespace recon::ui {
 
+namespace {
+
+/// What is plugged into this computer, whether or not the session uses it.
+void DrawConnectedDevices(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  ImGui::AlignTextToFramePadding();
+  ImGui::Text("Plugged in (%s):", s.connected_where.c_str());
+  ImGui::SameLine();
+  if (Button("Rescan")) context.commands.Push(RescanDevices{});
+  if (!s.connected_scanned) {
+    ImGui::TextDisabled("Looking...");
+    return;
+  }
+  if (s.connected.empty()) {
+    ImGui::TextDisabled("No UWB beacons, cameras, gamepads or robots found.");
+    return;
+  }
+  if (!ImGui::BeginTable("connected", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+  ImGui::TableSetupColumn("Kind");
+  ImGui::TableSetupColumn("Path");
+  ImGui::TableSetupColumn("Name");
+  ImGui::TableSetupColumn("Detail", ImGuiTableColumnFlags_WidthStretch);
+  ImGui::TableHeadersRow();
+  for (const ConnectedDeviceView& d : s.connected) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    StatusText(d.usable ? Status::kOk : Status::kError, d.kind);
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(d.path.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(d.identity.empty() ? "-" : d.identity.c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextWrapped("%s", d.detail.c_str());
+  }
+  ImGui::EndTable();
+}
+
+}  // namespace
+
 void DrawCellScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Cell", teach::StepPurpose(teach::Step::kCell));
@@ -46,6 +85,13 @@ void DrawCellScreen(const ScreenContext& context) {
     ImGui::EndTable();
   }
   if (s.devices.empty()) ImGui::TextDisabled("No devices: open or create a session first.");
+  if (!s.safety.limits.empty()) {
+    ImGui::Text("Safety envelope on every arm command: %s. Limited so far: %lld of %lld commands.",
+                s.safety.limits.c_str(), static_cast<long long>(s.safety.changed),
+                static_cast<long long>(s.safety.commands));
+  }
+  ImGui::Spacing();
+  DrawConnectedDevices(context);
   ImGui::Spacing();
   context.textures.camera.Update(s.camera, s.camera_frame);
   CameraView("camera##cell", context.textures.camera, 480.0f, s.beacons, {});

@@ -20,7 +20,7 @@ void DrawPlayScreen(const ScreenContext& context) {
   ImGui::SameLine();
   ImGui::BeginGroup();
   ImGui::Text("Play samples in the session: %d", s.play_samples);
-  const bool blocked = Blocked(s, teach::Step::kPlay);
+  const bool blocked = MotionBlocked(s, teach::Step::kPlay);
   if (s.recording_play) {
     StatusText(Status::kBusy,
                Format("Recording play data: %d of %d", s.play_recorded, s.play_target));
@@ -28,7 +28,7 @@ void DrawPlayScreen(const ScreenContext& context) {
         s.play_target > 0 ? static_cast<float>(s.play_recorded) / s.play_target : 0.0f,
         ImVec2(300, 0));
     if (Button("Stop")) context.commands.Push(StopPlay{});
-  } else if (Button("Record 30 play samples", !blocked, WhyBlocked(s, teach::Step::kPlay))) {
+  } else if (Button("Record 30 play samples", !blocked, WhyMotionBlocked(s, teach::Step::kPlay))) {
     context.commands.Push(RecordPlay{30});
   }
   // The last sample as the policy's camera saw it, with the beacon's reading: what the feature

@@ -64,8 +64,8 @@ void DrawTeleopChoice(const ScreenContext& context) {
 void DrawRecordScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Record", teach::StepPurpose(teach::Step::kRecord));
-  const bool blocked = Blocked(s, teach::Step::kRecord) && !s.recording;
-  const std::string why = WhyBlocked(s, teach::Step::kRecord);
+  const bool blocked = MotionBlocked(s, teach::Step::kRecord) && !s.recording;
+  const std::string why = WhyMotionBlocked(s, teach::Step::kRecord);
   ReadTeleopKeys(context);
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();

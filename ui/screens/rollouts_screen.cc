@@ -88,8 +88,8 @@ void DrawRolloutsScreen(const ScreenContext& context) {
   if (s.rollouts_running) {
     StatusText(Status::kBusy, "Rolling out...");
   } else {
-    if (Button("Run rollouts", !Blocked(s, teach::Step::kRollouts),
-               WhyBlocked(s, teach::Step::kRollouts))) {
+    if (Button("Run rollouts", !MotionBlocked(s, teach::Step::kRollouts),
+               WhyMotionBlocked(s, teach::Step::kRollouts))) {
       context.commands.Push(RunRollouts{s.rollout_tests});
     }
     ImGui::SameLine();

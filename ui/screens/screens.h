@@ -44,5 +44,9 @@ const teach::StepStatus& StatusOf(const StudioSnapshot& snapshot, teach::Step st
 /// A blocked step's reason, for disabled buttons' tooltips (empty when not blocked).
 std::string WhyBlocked(const StudioSnapshot& snapshot, teach::Step step);
 bool Blocked(const StudioSnapshot& snapshot, teach::Step step);
+/// For a step that moves the arm (Record, Play data, Rollouts): blocked by the workflow or by the
+/// e-stop, and why (the e-stop's reason first).
+bool MotionBlocked(const StudioSnapshot& snapshot, teach::Step step);
+std::string WhyMotionBlocked(const StudioSnapshot& snapshot, teach::Step step);
 
 }  // namespace recon::ui

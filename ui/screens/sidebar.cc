@@ -39,6 +39,15 @@ bool Blocked(const StudioSnapshot& snapshot, teach::Step step) {
   return StatusOf(snapshot, step).state == teach::StepState::kBlocked;
 }
 
+bool MotionBlocked(const StudioSnapshot& snapshot, teach::Step step) {
+  return snapshot.safety.estop || Blocked(snapshot, step);
+}
+
+std::string WhyMotionBlocked(const StudioSnapshot& snapshot, teach::Step step) {
+  if (snapshot.safety.estop) return "The e-stop is engaged: release it first.";
+  return WhyBlocked(snapshot, step);
+}
+
 void DrawSidebar(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ImGui::SetWindowFontScale(1.2f);

@@ -85,13 +85,22 @@ struct ShowSessionPicker {
 struct OpenSession {
   std::string dir;
 };
+/// The e-stop (the status bar's button, or Escape): engaging it stops the arm at once, ends a
+/// demonstration or play recording without keeping it, and refuses everything that would move the
+/// arm until it is released.
+struct EmergencyStop {
+  bool engage = true;
+  std::string reason = "e-stop pressed";
+};
+/// Looks for plugged-in devices now instead of at the next periodic scan.
+struct RescanDevices {};
 
 using StudioCommand =
     std::variant<OpenStep, AssignBeacon, StartCalibration, CancelCalibration, StartRecording,
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, ShowRolloutFrame,
                  WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay, PlayRollouts,
-                 ShowSessionPicker, OpenSession>;
+                 ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

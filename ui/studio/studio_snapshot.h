@@ -22,6 +22,25 @@ struct DeviceView {
   std::string last_error;  ///< empty when healthy
 };
 
+/// A device plugged into this computer (devices/discovery, listed without opening it), as the
+/// Cell screen's "Connected" table shows it.
+struct ConnectedDeviceView {
+  std::string kind;      ///< "beacon", "camera", "gamepad", "robot"
+  std::string path;      ///< /dev/ttyACM0, /dev/video0, host:port
+  std::string identity;  ///< the USB name, the joystick's name; empty when unknown
+  bool usable = false;
+  std::string detail;
+};
+
+/// The safety envelope every arm command passes, and what it did.
+struct SafetyView {
+  std::string limits;  ///< e.g. "1 rad/s, 5 rad/s^2, tool floor 5 mm, watchdog 200 ms"
+  int64_t commands = 0;
+  int64_t changed = 0;  ///< commands the envelope limited or stopped
+  bool estop = false;   ///< the e-stop is engaged
+  std::string estop_reason;
+};
+
 /// An object on the table a beacon can mark, with where the camera sees it.
 struct ObjectView {
   std::string name;                ///< "plate", "bowl", "toast"
@@ -123,6 +142,10 @@ struct StudioSnapshot {
   // Cell.
   std::string cell_kind = "simulated";
   std::vector<DeviceView> devices;
+  std::vector<ConnectedDeviceView> connected;  ///< what is plugged in (scanned every 2 s)
+  bool connected_scanned = false;              ///< false until the first scan finished
+  std::string connected_where;                 ///< where it looks, e.g. "/dev"
+  SafetyView safety;
   RgbImage camera;  ///< the live camera frame (empty when none)
   uint64_t camera_frame = 0;
   std::vector<ObjectView> objects;

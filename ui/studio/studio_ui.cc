@@ -38,9 +38,44 @@ void DrawScreen(const ScreenContext& context) {
   }
 }
 
+/// The bottom line: what is happening, and the e-stop, always within reach. Escape engages it
+/// from anywhere (even while typing: stopping the arm comes first).
+void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
+  const SafetyView& safety = snapshot.safety;
+  const bool escape = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+  if (escape && !safety.estop) commands.Push(EmergencyStop{true, "Escape pressed"});
+  if (safety.estop) {
+    ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.0f, 1.0f), "E-STOP ENGAGED (%s): the arm is stopped.",
+                       safety.estop_reason.c_str());
+  } else {
+    ImGui::TextUnformatted(snapshot.status.empty() ? "Ready." : snapshot.status.c_str());
+  }
+  constexpr float kButtonWidth = 150.0f;
+  ImGui::SameLine(ImGui::GetWindowWidth() - kButtonWidth - 10);
+  ImGui::SetCursorPosY(2);
+  ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.8f, 0.05f, 0.05f, 1.0f));
+  ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.15f, 0.1f, 1.0f));
+  ImGui::PushStyleColor(ImGuiCol_ButtonActive, ImVec4(0.6f, 0.0f, 0.0f, 1.0f));
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 1, 1, 1));
+  if (safety.estop) {
+    if (Button("Release e-stop")) commands.Push(EmergencyStop{false, ""});
+  } else if (Button("E-STOP (Esc)")) {
+    commands.Push(EmergencyStop{true, "e-stop button"});
+  }
+  ImGui::PopStyleColor(4);
+}
+
 }  // namespace
 
 void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTextures& textures) {
+  // While a demonstration records, the arrows and Space drive the arm: they must not also move
+  // ImGui's keyboard focus and press whatever button it lands on (from the next frame on).
+  ImGuiIO& io = ImGui::GetIO();
+  if (snapshot.recording) {
+    io.ConfigFlags &= ~ImGuiConfigFlags_NavEnableKeyboard;
+  } else {
+    io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard;
+  }
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   const ScreenContext context{snapshot, commands, textures};
   float top = 0;
@@ -78,7 +113,7 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::SetNextWindowSize(ImVec2(display.x, kStatusHeight));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(10, 5));
   ImGui::Begin("Status", nullptr, kPanel);
-  ImGui::TextUnformatted(snapshot.status.empty() ? "Ready." : snapshot.status.c_str());
+  DrawStatusBar(snapshot, commands);
   ImGui::End();
   ImGui::PopStyleVar();
 }
