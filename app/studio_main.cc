@@ -157,6 +157,13 @@ int main(int argc, char** argv) {
   app.add_option("--world", flags.options.world, "task of a new session")->capture_default_str();
   app.add_option("--seed", flags.options.seed, "seed of a new session")->capture_default_str();
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
+  app.add_option("--cell", flags.options.cell_profile,
+                 "teach with the real devices of this cell profile (JSON: camera, beacons, UR "
+                 "robot; docs/hardware.md) instead of the simulated cell")
+      ->check(CLI::ExistingFile);
+  app.add_option("--calibration", flags.options.calibration_file,
+                 "attach this calibration (recon calibrate --out) to the session")
+      ->check(CLI::ExistingFile);
   app.add_option("--dev", flags.options.dev_dir,
                  "device folder the Cell screen lists beacons, cameras and gamepads from")
       ->capture_default_str();

@@ -10,6 +10,18 @@
 
 namespace recon::studio {
 
+ui::BeaconView BeaconViewOf(const BeaconSpec& beacon, const store::SessionManifest& manifest,
+                            const std::vector<float>& reading) {
+  ui::BeaconView view;
+  view.name = beacon.name;
+  auto it = manifest.beacon_assignments.find(beacon.name);
+  view.object = it == manifest.beacon_assignments.end() ? "" : it->second;
+  view.quantity = beacon.quantity;
+  view.unit = beacon.unit;
+  view.reading = reading;
+  return view;
+}
+
 void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, int width,
                       int height, const store::SessionManifest& manifest,
                       const std::vector<float>& reading, ui::StudioSnapshot& s) {
@@ -29,13 +41,7 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
   object("bowl", world.BowlPosition());
   object("toast", world.ToastPosition());
   for (const BeaconSpec& b : manifest.beacons) {
-    ui::BeaconView view;
-    view.name = b.name;
-    auto it = manifest.beacon_assignments.find(b.name);
-    view.object = it == manifest.beacon_assignments.end() ? "" : it->second;
-    view.quantity = b.quantity;
-    view.unit = b.unit;
-    view.reading = reading;
+    ui::BeaconView view = BeaconViewOf(b, manifest, reading);
     view.pixel = pixel(world.BeaconPosition());
     view.rate_hz = 1.0 / world.StepSeconds();
     view.noise_m = manifest.beacon_noise_sigma;
@@ -47,10 +53,8 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
 
 namespace recon::studio {
 
-Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
-                               int height, double speed_m_s) {
-  const tags::PinholeCamera camera = cell::SceneCamera(world.scene(), "top", width, height);
-  const Eigen::Vector3d grip = world.arm().GripPosition();
+Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::Vector3d& grip,
+                               const ui::TeleopInput& input, double speed_m_s) {
   const Eigen::Vector2d at = camera.Project(grip);
   Eigen::Matrix2d to_screen;  // table x, y (per metre) -> pixels
   to_screen.col(0) = (camera.Project(grip + Eigen::Vector3d(0.05, 0, 0)) - at) / 0.05;
@@ -64,6 +68,12 @@ Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& i
   }
   velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
   return velocity;
+}
+
+Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
+                               int height, double speed_m_s) {
+  return TeleopVelocity(cell::SceneCamera(world.scene(), "top", width, height),
+                        world.arm().GripPosition(), input, speed_m_s);
 }
 
 }  // namespace recon::studio

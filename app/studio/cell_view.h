@@ -3,12 +3,18 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "devices/tags/pinhole_camera.h"
 #include "engine/store/manifest.h"
 #include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/tabletop.h"
 #include "ui/studio/studio_snapshot.h"
 
 namespace recon::studio {
+
+/// A beacon of the session as the Beacons screen shows it: its name, the object it is assigned
+/// to, what it measures and its latest `reading` (no pixel, rate or noise: the cell's to fill).
+ui::BeaconView BeaconViewOf(const BeaconSpec& beacon, const store::SessionManifest& manifest,
+                            const std::vector<float>& reading);
 
 /// Fills the snapshot's live view of the tabletop cell: the top camera at width x height, the
 /// objects a beacon can be assigned to (where the camera sees them) and each beacon of the
@@ -26,6 +32,9 @@ namespace recon::studio {
 /// it move on screen, whatever way the camera is mounted. `speed_m_s` at full deflection.
 Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
                                int height, double speed_m_s);
+/// The same for any camera that sees the grip point (a real cell's, located by its table tags).
+Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::Vector3d& grip,
+                               const ui::TeleopInput& input, double speed_m_s);
 
 }  // namespace recon::studio
 

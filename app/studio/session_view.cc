@@ -90,9 +90,10 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
                        "lower it, Space opens and closes the gripper",
                        true, 0.0, ""});
   s.devices.push_back(inputs.gamepad);
-  s.teleop_choices = {{"scripted", "Scripted", true, ""},
-                      {"keyboard", "Keyboard", true, ""},
-                      {"gamepad", "Gamepad", inputs.gamepad.connected, "no gamepad connected"}};
+  s.teleop_choices = {
+      {"scripted", "Scripted", m.cell != "real", "a real cell has no scripted teacher"},
+      {"keyboard", "Keyboard", true, ""},
+      {"gamepad", "Gamepad", inputs.gamepad.connected, "no gamepad connected"}};
   std::optional<calib::CalibrationReport> calibration;
   if (!m.calibration_file.empty()) {
     calibration = calib::LoadCalibration((fs::path(session.dir()) / m.calibration_file).string());

@@ -13,6 +13,7 @@
 #include "app/studio/device_scanner.h"
 #include "app/studio/gamepad_source.h"
 #include "app/studio/job_thread.h"
+#include "app/studio/real_cell_source.h"
 #include "app/studio/recent_sessions.h"
 #include "app/studio/rollout_playback.h"
 #include "app/studio/session_view.h"
@@ -50,6 +51,10 @@ class StudioController::Cell {
   /// to the thread that made them).
   void Start() {
     view_ = render::MujocoRendererFactory()();
+    if (!options_.cell_profile.empty()) {
+      real_ = std::make_unique<RealCellSource>(options_.cell_profile);
+      teleop_mode_ = "keyboard";  // a real cell has no scripted teacher
+    }
     if (options_.session_dir.empty()) {
       picking_session_ = true;
       status_ = "Open a session, or create one in a new folder.";
@@ -71,6 +76,15 @@ class StudioController::Cell {
                       " session is recorded and trained from the command line (recon record, "
                       "recon train)");
     }
+    if (exists) {
+      const std::string cell = store::LoadManifest((fs::path(dir) / "session.json").string()).cell;
+      if (real_ && cell != "real") {
+        throw UserError(dir + " was taught in the simulated cell: open it without --cell");
+      }
+      if (!real_ && cell == "real") {
+        throw UserError(dir + " was taught in a real cell: open it with --cell PROFILE");
+      }
+    }
     if (session_ && fs::equivalent(session_->dir(), dir)) {
       picking_session_ = false;
       return;
@@ -79,21 +93,28 @@ class StudioController::Cell {
     std::unique_ptr<worlds::World> made;
     if (exists) {
       opened.emplace(store::Session::Open(dir));
-      made = cli::MakeSessionWorld(opened->manifest(), opened->manifest().placement);
+      if (!options_.calibration_file.empty()) opened->AttachCalibration(options_.calibration_file);
+      made = MakeWorld(*opened);
     } else {
       store::SessionManifest probe;
       probe.world = options_.world;
       probe.placement = teach::DefaultTeachingPlacement(options_.world);
       probe.image_size = options_.image_size;
       probe.beacon_noise_sigma = options_.beacon_noise_sigma;
-      made = cli::MakeSessionWorld(probe, probe.placement);
+      made = real_ ? real_->MakeWorld(probe, "") : cli::MakeSessionWorld(probe, probe.placement);
       teach::SessionSetup setup;
       setup.world_name = probe.world;
       setup.placement = probe.placement;
       setup.image_size = probe.image_size;
       setup.seed = options_.seed;
       setup.beacon_noise_sigma = options_.beacon_noise_sigma;
-      opened.emplace(store::Session::Create(dir, teach::NewSessionManifest(setup, *made)));
+      store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
+      if (real_) real_->DescribeInto(manifest);
+      opened.emplace(store::Session::Create(dir, manifest));
+      if (!options_.calibration_file.empty()) {
+        opened->AttachCalibration(options_.calibration_file);
+        made = MakeWorld(*opened);  // with the calibration's UWB -> table transform
+      }
     }
     // The new session is good: drop everything that belonged to the old one.
     recorder_.reset();
@@ -153,7 +174,13 @@ class StudioController::Cell {
       // draws beacon noise from the world's generator, which a recording must have to itself
       // so that its scenario seed reproduces it exactly.
       next_beacon_ = now + kControlPeriod;
-      last_reading_ = world_->BeaconReading();
+      if (real_ && session_->manifest().calibration_file.empty()) {
+        // Not calibrated: the world cannot map the beacon to the table yet; show that it
+        // reports, in its own (UWB) frame.
+        if (std::vector<float> raw = real_->RawBeaconReading(); !raw.empty()) last_reading_ = raw;
+      } else {
+        last_reading_ = world_->BeaconReading();
+      }
       beacon_health_.Add(Seconds(now), last_reading_);
     }
     if (playback_) playback_->Tick(now);
@@ -200,6 +227,7 @@ class StudioController::Cell {
     s.recording_samples = recorder_ ? recorder_->samples() : 0;
     s.teleop = teleop_mode_;
     s.teleop_input = teleop_input_;
+    if (real_) real_->ShowDevices(s);
     if (auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get())) {
       const Eigen::Vector3d grip = tabletop->arm().GripPosition();
       s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
@@ -235,6 +263,16 @@ class StudioController::Cell {
   }
 
  private:
+  /// The session's world: the simulated cell's, or the tabletop task over the real devices with
+  /// the session's calibration.
+  std::unique_ptr<worlds::World> MakeWorld(const store::Session& session) {
+    const store::SessionManifest& m = session.manifest();
+    if (!real_) return cli::MakeSessionWorld(m, m.placement);
+    return real_->MakeWorld(m, m.calibration_file.empty()
+                                   ? ""
+                                   : (fs::path(session.dir()) / m.calibration_file).string());
+  }
+
   /// Marks the session's side of the snapshot stale: after every command, commit and job.
   void Changed() { dirty_ = true; }
 
@@ -271,6 +309,12 @@ class StudioController::Cell {
   /// The live camera, the objects one can click and where the beacons read; rendered only for
   /// the screens that show it, so training and rollouts get the CPU the others would take.
   void RenderView(ui::StudioSnapshot& s) {
+    if (real_) {
+      real_->ShowLive(session_->manifest(), last_reading_,
+                      !session_->manifest().calibration_file.empty(), s);
+      camera_health_.Add(Seconds(Clock::now()));
+      return;
+    }
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) return;  // the other worlds have no camera
     switch (current_step_) {
@@ -325,6 +369,7 @@ class StudioController::Cell {
   void ShowSafety(ui::StudioSnapshot& s) const {
     s.safety.estop = estop_;
     s.safety.estop_reason = estop_reason_;
+    if (real_) return real_->ShowSafety(s.safety);
     const auto* tabletop = dynamic_cast<const worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) return;
     const safety::SafetyStats& stats = tabletop->safety_stats();
@@ -365,7 +410,8 @@ class StudioController::Cell {
   void StartPlayChunk() {
     const int chunk =
         std::min(std::max(1, world_->PlaySamplesPerScenario()), play_target_ - play_done_);
-    play_ = std::make_unique<teach::PlayRecorder>(*world_, "simulated-play");
+    play_ =
+        std::make_unique<teach::PlayRecorder>(*world_, real_ ? "person-play" : "simulated-play");
     play_->Start(
         store::Session::ScenarioSeed(session_->manifest().seed, session_->NextPlayNumber(), true),
         chunk);
@@ -398,6 +444,13 @@ class StudioController::Cell {
   }
 
   teach::Teacher MakeTeacher() {
+    if (real_) {
+      if (teleop_mode_ == "scripted") {
+        throw UserError(
+            "a real cell has no scripted teacher: teach with the keyboard or a gamepad");
+      }
+      return real_->Teacher(&teleop_command_);
+    }
     if (teleop_mode_ == "scripted") return teach::ScriptedTeacher;
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) throw UserError("teleop needs the arm cell");
@@ -444,6 +497,12 @@ class StudioController::Cell {
   }
   void Apply(const ui::StartCalibration&) {
     RequireIdle("calibrate");
+    if (real_) {
+      throw UserError(
+          "the Calibrate step runs the simulated cell's calibration only, for now: "
+          "calibrate a real cell with 'recon calibrate --camera ... --out cal.json' "
+          "and start the studio with --calibration cal.json");
+    }
     const uint64_t seed = session_->manifest().seed;
     const int points = options_.calibration_points;
     const std::string dir = session_->dir();
@@ -522,10 +581,18 @@ class StudioController::Cell {
     if (c.mode != "scripted" && c.mode != "keyboard" && c.mode != "gamepad") {
       throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
     }
+    if (real_ && c.mode == "scripted") {
+      throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
+    }
     teleop_mode_ = c.mode;
   }
   void Apply(const ui::TeleopInput& c) {
     teleop_input_ = c;
+    if (real_) {
+      teleop_command_.velocity_m_s = real_->TeleopVelocity(c, kTeleopSpeed_m_s);
+      teleop_command_.close_gripper = c.close_gripper;
+      return;
+    }
     auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
     if (tabletop == nullptr) return;
     teleop_command_.velocity_m_s =
@@ -558,6 +625,11 @@ class StudioController::Cell {
   void Apply(const ui::RunRollouts& c) {
     RequireIdle("roll out");
     RequireNoEmergencyStop("roll out");
+    if (real_) {
+      throw UserError(
+          "rollouts on a real arm are not run from the studio yet: the policies are "
+          "trained; roll them out in the simulated cell's sessions");
+    }
     const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
     jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
       RollOutTrainedMethods(*session_, tests);
@@ -577,6 +649,7 @@ class StudioController::Cell {
   void Apply(const ui::RescanDevices&) { scanner_.RescanNow(); }
   void Apply(const ui::EmergencyStop& c) {
     if (!c.engage) {
+      if (real_) real_->EmergencyStop(false, "");
       estop_ = false;
       estop_reason_.clear();
       status_ = "E-stop released.";
@@ -584,6 +657,7 @@ class StudioController::Cell {
     }
     estop_ = true;
     estop_reason_ = c.reason.empty() ? "e-stop pressed" : c.reason;
+    if (real_) real_->EmergencyStop(true, estop_reason_);
     // The arm stops now. The simulated arm moves only while a recording steps it, so ending the
     // recording stops it; nothing half-taught under an e-stop is kept.
     teleop_input_ = {};
@@ -609,6 +683,7 @@ class StudioController::Cell {
   RecentSessions recent_;
   bool picking_session_ = false;
   std::optional<store::Session> session_;
+  std::unique_ptr<RealCellSource> real_;  ///< the real cell, when the studio teaches in one
   std::unique_ptr<worlds::World> world_;
   std::unique_ptr<worlds::SceneRenderer> view_;
   std::unique_ptr<teach::DemoRecorder> recorder_;

@@ -33,6 +33,11 @@ struct StudioOptions {
   int calibration_points = 12;
   int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)
   int view_height = 240;
+  /// A cell profile (devices/cell/cell_profile.h): teach with the real camera, beacons and UR5 it
+  /// names instead of the simulated cell. Empty: the simulated cell.
+  std::string cell_profile;
+  /// A calibration file (recon calibrate --out) to attach to the session when it opens.
+  std::string calibration_file;
   /// Where the Cell screen looks for plugged-in devices, and how often.
   std::string dev_dir = "/dev";
   std::vector<std::string> robot_hosts;  ///< UR controllers to list, "host[:port]"

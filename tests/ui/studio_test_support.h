@@ -93,7 +93,7 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
     s.safety.changed = 3;
     s.camera = SyntheticCamera();
     s.camera_frame = 1;
-    s.objects = {{"plate", 110, 60}, {"bowl", 45, 35}, {"toast", 49, 86}};
+    s.objects = {{"plate", 110, 60, true}, {"bowl", 45, 35, true}, {"toast", 49, 86, true}};
     BeaconView beacon;
     beacon.name = "plate";
     beacon.object = p >= 2 ? "plate" : "";

@@ -45,6 +45,9 @@ struct SafetyView {
 struct ObjectView {
   std::string name;                ///< "plate", "bowl", "toast"
   float pixel_x = 0, pixel_y = 0;  ///< in the camera image
+  /// False when the cell does not know where the object is (a real cell): then it is offered
+  /// in the list only, not drawn on the camera view.
+  bool located = true;
 };
 
 /// A beacon as the Beacons screen shows it.

@@ -25,6 +25,7 @@ std::optional<std::string> CameraView(const char* id, const ImageTexture& textur
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const float radius = std::max(10.0f, 0.05f * width);
   for (const ObjectView& object : objects) {
+    if (!object.located) continue;
     const ImVec2 at(origin.x + object.pixel_x * scale, origin.y + object.pixel_y * scale);
     const bool hovered = std::hypot(mouse.x - at.x, mouse.y - at.y) < radius;
     draw->AddCircle(at, radius,

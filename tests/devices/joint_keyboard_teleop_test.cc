@@ -1,6 +1,6 @@
-// KeyboardTeleop: the key map, gripper toggling on presses, Enter.
+// JointKeyboardTeleop: the key map, gripper toggling on presses, Enter.
 
-#include "devices/sim/keyboard_teleop.h"
+#include "devices/teleop/joint_keyboard_teleop.h"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +9,12 @@
 
 #include "engine/core/error.h"
 
-namespace recon::sim {
+namespace recon::teleop {
 namespace {
 
-TEST(KeyboardTeleopTest, EachKeyDrivesItsJointAtTheConfiguredSpeed) {
-  KeyboardTeleop keyboard;  // 0.5 rad/s
-  EXPECT_EQ(keyboard.Describe(), "keyboard teleop (0.5 rad/s)");
+TEST(JointKeyboardTeleopTest, EachKeyDrivesItsJointAtTheConfiguredSpeed) {
+  JointKeyboardTeleop keyboard;  // 0.5 rad/s
+  EXPECT_EQ(keyboard.Describe(), "joint keyboard teleop (0.5 rad/s)");
   const std::string plus = "qwerty", minus = "asdfgh";
   for (int joint = 0; joint < 6; ++joint) {
     for (const auto& [key, sign] : {std::pair{plus[joint], 1.0}, std::pair{minus[joint], -1.0}}) {
@@ -32,8 +32,8 @@ TEST(KeyboardTeleopTest, EachKeyDrivesItsJointAtTheConfiguredSpeed) {
   }
 }
 
-TEST(KeyboardTeleopTest, KeysCombineCancelAndIgnoreCase) {
-  KeyboardTeleop keyboard(1.25);
+TEST(JointKeyboardTeleopTest, KeysCombineCancelAndIgnoreCase) {
+  JointKeyboardTeleop keyboard(1.25);
   keyboard.SetKeyDown('Q', true);  // Shift held
   keyboard.SetKeyDown('w', true);
   keyboard.SetKeyDown('e', true);
@@ -45,8 +45,8 @@ TEST(KeyboardTeleopTest, KeysCombineCancelAndIgnoreCase) {
   EXPECT_EQ(keyboard.Poll().joint_velocity_rad_s, (std::array<double, 6>{0, 1.25, 1.25, 0, 0, 0}));
 }
 
-TEST(KeyboardTeleopTest, SpaceTogglesTheGripperOnPressesOnly) {
-  KeyboardTeleop keyboard;
+TEST(JointKeyboardTeleopTest, SpaceTogglesTheGripperOnPressesOnly) {
+  JointKeyboardTeleop keyboard;
   keyboard.SetKeyDown(' ', true);
   EXPECT_TRUE(keyboard.Poll().close_gripper);
   keyboard.SetKeyDown(' ', true);  // auto-repeat while held: not a new press
@@ -63,8 +63,8 @@ TEST(KeyboardTeleopTest, SpaceTogglesTheGripperOnPressesOnly) {
   EXPECT_TRUE(keyboard.Poll().close_gripper);
 }
 
-TEST(KeyboardTeleopTest, EnterFinishesUntilReset) {
-  KeyboardTeleop keyboard;
+TEST(JointKeyboardTeleopTest, EnterFinishesUntilReset) {
+  JointKeyboardTeleop keyboard;
   keyboard.SetKeyDown('w', true);
   keyboard.SetKeyDown(' ', true);
   EXPECT_FALSE(keyboard.Poll().finished);
@@ -81,11 +81,11 @@ TEST(KeyboardTeleopTest, EnterFinishesUntilReset) {
   EXPECT_TRUE(keyboard.Poll().finished);
 }
 
-TEST(KeyboardTeleopTest, BadSpeedIsAUserError) {
-  EXPECT_THROW(KeyboardTeleop(0.0), UserError);
-  EXPECT_THROW(KeyboardTeleop(-0.5), UserError);
-  EXPECT_THROW(KeyboardTeleop(std::nan("")), UserError);
+TEST(JointKeyboardTeleopTest, BadSpeedIsAUserError) {
+  EXPECT_THROW(JointKeyboardTeleop(0.0), UserError);
+  EXPECT_THROW(JointKeyboardTeleop(-0.5), UserError);
+  EXPECT_THROW(JointKeyboardTeleop(std::nan("")), UserError);
 }
 
 }  // namespace
-}  // namespace recon::sim
+}  // namespace recon::teleop

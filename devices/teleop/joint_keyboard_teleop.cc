@@ -1,4 +1,4 @@
-#include "devices/sim/keyboard_teleop.h"
+#include "devices/teleop/joint_keyboard_teleop.h"
 
 #include <cctype>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "engine/core/error.h"
 
-namespace recon::sim {
+namespace recon::teleop {
 
 namespace {
 
@@ -20,13 +20,13 @@ unsigned char Normalise(char key) {
 
 }  // namespace
 
-KeyboardTeleop::KeyboardTeleop(double speed_rad_s) : speed_rad_s_(speed_rad_s) {
+JointKeyboardTeleop::JointKeyboardTeleop(double speed_rad_s) : speed_rad_s_(speed_rad_s) {
   if (!std::isfinite(speed_rad_s_) || speed_rad_s_ <= 0) {
     throw UserError("the keyboard teleop speed must be a positive number of rad/s");
   }
 }
 
-void KeyboardTeleop::SetKeyDown(char key, bool down) {
+void JointKeyboardTeleop::SetKeyDown(char key, bool down) {
   const unsigned char k = Normalise(key);
   const bool was_down = down_[k];
   down_[k] = down;
@@ -35,7 +35,7 @@ void KeyboardTeleop::SetKeyDown(char key, bool down) {
   if (k == '\n' || k == '\r') finished_ = true;
 }
 
-devices::TeleopCommand KeyboardTeleop::Poll() {
+devices::TeleopCommand JointKeyboardTeleop::Poll() {
   devices::TeleopCommand command;
   for (int joint = 0; joint < 6; ++joint) {
     const bool plus = down_[static_cast<unsigned char>(kPlusKeys[joint])];
@@ -48,16 +48,16 @@ devices::TeleopCommand KeyboardTeleop::Poll() {
   return command;
 }
 
-std::string KeyboardTeleop::Describe() const {
+std::string JointKeyboardTeleop::Describe() const {
   std::ostringstream out;
-  out << "keyboard teleop (" << speed_rad_s_ << " rad/s)";
+  out << "joint keyboard teleop (" << speed_rad_s_ << " rad/s)";
   return out.str();
 }
 
-void KeyboardTeleop::Reset() {
+void JointKeyboardTeleop::Reset() {
   down_ = {};
   close_gripper_ = false;
   finished_ = false;
 }
 
-}  // namespace recon::sim
+}  // namespace recon::teleop

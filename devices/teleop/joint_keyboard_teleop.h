@@ -5,9 +5,11 @@
 
 #include "engine/devices/teleop.h"
 
-namespace recon::sim {
+namespace recon::teleop {
 
-/// Teaching from a keyboard: the GUI or a terminal reports key presses and releases through
+/// Joint-space teaching from a keyboard (the studio's keyboard teleop is Cartesian: arrows move
+/// the grip point as the camera shows it; this one drives each joint on its own, for a terminal
+/// or for moving the arm out of a corner): the caller reports key presses and releases through
 /// SetKeyDown, and each Poll turns the keys held now into a command. Letters are case-insensitive
 /// (Shift changes nothing).
 ///
@@ -23,16 +25,16 @@ namespace recon::sim {
 /// Space toggles the gripper (closed <-> open) on each press, counted when it happens, so a tap
 /// between two polls is not lost and holding it does not repeat. Enter ('\n' or '\r') finishes the
 /// demonstration: every later Poll reports `finished` until Reset. Other keys are ignored.
-class KeyboardTeleop final : public devices::Teleop {
+class JointKeyboardTeleop final : public devices::Teleop {
  public:
   static constexpr double kDefaultSpeed_rad_s = 0.5;
 
   /// UserError unless the speed is a positive number of rad/s.
-  explicit KeyboardTeleop(double speed_rad_s = kDefaultSpeed_rad_s);
+  explicit JointKeyboardTeleop(double speed_rad_s = kDefaultSpeed_rad_s);
 
   void SetKeyDown(char key, bool down);
   devices::TeleopCommand Poll() override;
-  /// E.g. "keyboard teleop (0.5 rad/s)".
+  /// E.g. "joint keyboard teleop (0.5 rad/s)".
   std::string Describe() const override;
 
   /// Releases every key, opens the gripper and clears `finished`: ready for a new demonstration.
@@ -45,4 +47,4 @@ class KeyboardTeleop final : public devices::Teleop {
   double speed_rad_s_;
 };
 
-}  // namespace recon::sim
+}  // namespace recon::teleop

@@ -1,0 +1,154 @@
+#include "app/studio/real_cell_source.h"
+
+#include <filesystem>
+#include <utility>
+
+#include "app/studio/cell_view.h"
+#include "devices/teleop/cartesian_velocity.h"
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
+#include "engine/safety/ur5_kinematics.h"
+#include "engine/worlds/ur5_arm.h"
+
+namespace recon::studio {
+
+namespace fs = std::filesystem;
+
+RealCellSource::RealCellSource(const std::string& profile_path)
+    : cell_(std::make_unique<cell::RealCell>(cell::ReadCellProfile(profile_path))) {}
+
+void RealCellSource::DescribeInto(store::SessionManifest& m) const {
+  m.cell = "real";
+  m.devices.clear();
+  for (const cell::CellDeviceStatus& d : cell_->Status()) {
+    m.devices.push_back({d.role, d.kind, d.detail});
+  }
+  m.devices.push_back({"teleop", "keyboard or gamepad", "a person, through the studio"});
+}
+
+std::unique_ptr<worlds::World> RealCellSource::MakeWorld(const store::SessionManifest& manifest,
+                                                         const std::string& calibration_path) {
+  cell::RealCellWorldOptions options;
+  options.placement = manifest.placement;
+  options.image_size = manifest.image_size;
+  if (!calibration_path.empty() && fs::exists(calibration_path)) {
+    options.uwb_to_table = calib::LoadCalibration(calibration_path).transform;
+  }
+  return cell::MakeRealCellWorld(*cell_, std::move(options));
+}
+
+Eigen::Vector3d RealCellSource::GripPoint() const {
+  const safety::GuardedArm* arm = cell_->arm();
+  const safety::SafetyLimits& limits = arm->envelope().limits();
+  return limits.base_in_table *
+         safety::Ur5ToolPoint(arm->State().position_rad, limits.tool_offset_m);
+}
+
+void RealCellSource::ShowLive(const store::SessionManifest& manifest,
+                              const std::vector<float>& reading, bool reading_in_table,
+                              ui::StudioSnapshot& s) const {
+  const std::shared_ptr<const devices::CameraFrame> frame = cell_->LatestFrame();
+  if (frame) {
+    s.camera = frame->image;
+    s.camera_frame = static_cast<uint64_t>(frame->sequence) + 1;
+  }
+  const auto& pose = cell_->camera_pose();
+  const auto pixel = [&](const Eigen::Vector3d& p) -> std::optional<std::array<float, 2>> {
+    if (!pose) return std::nullopt;
+    const Eigen::Vector2d px = pose->camera.Project(p);
+    return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
+  };
+  for (const char* object : {"plate", "bowl", "toast"}) {
+    ui::ObjectView view;
+    view.name = object;
+    view.located = false;  // a real cell does not know where its objects are: chosen from a list
+    s.objects.push_back(view);
+  }
+  for (const BeaconSpec& b : manifest.beacons) {
+    ui::BeaconView view = BeaconViewOf(b, manifest, reading);
+    if (reading_in_table && reading.size() == 2) view.pixel = pixel({reading[0], reading[1], 0.0});
+    s.beacons.push_back(view);
+  }
+  if (cell_->arm() != nullptr) {
+    const Eigen::Vector3d grip = GripPoint();
+    s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
+                static_cast<float>(grip.z())};
+    if (auto px = pixel(grip)) s.grip_pixel = *px;
+    s.gripper_closed = cell_->arm()->State().gripper_opening < 0.5;
+  }
+}
+
+void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {
+  std::vector<ui::DeviceView> rows;
+  for (const cell::CellDeviceStatus& d : cell_->Status()) {
+    rows.push_back({d.role, d.kind, d.detail, d.connected, 0.0, d.last_error});
+  }
+  if (!cell_->camera_pose()) {
+    rows[0].detail += " (no camera pose: " + cell_->camera_pose_error() + ")";
+  }
+  for (ui::DeviceView& d : s.devices) {
+    if (d.role == "teleop") rows.push_back(d);
+  }
+  s.devices = std::move(rows);
+}
+
+void RealCellSource::ShowSafety(ui::SafetyView& view) const {
+  const safety::GuardedArm* arm = cell_->arm();
+  if (arm == nullptr) return;
+  const safety::SafetyStats stats = arm->stats();
+  view.limits = safety::DescribeLimits(arm->envelope().limits());
+  // The arm's own latch is what holds the robot: show it, not what the studio asked for.
+  view.estop = arm->emergency_stopped();
+  view.estop_reason = arm->emergency_stop_reason();
+  view.commands = stats.commands;
+  view.changed = stats.changed;
+}
+
+Eigen::Vector3d RealCellSource::TeleopVelocity(const ui::TeleopInput& input,
+                                               double speed_m_s) const {
+  if (cell_->camera_pose() && cell_->arm() != nullptr) {
+    return studio::TeleopVelocity(cell_->camera_pose()->camera, GripPoint(), input, speed_m_s);
+  }
+  Eigen::Vector3d velocity(input.screen_right, input.screen_up, input.raise);
+  if (velocity.head<2>().norm() > 1.0) velocity.head<2>().normalize();
+  velocity.z() = std::clamp(velocity.z(), -1.0, 1.0);
+  return velocity * speed_m_s;
+}
+
+teach::Teacher RealCellSource::Teacher(const teach::TeleopCommand* command) {
+  safety::GuardedArm* arm = cell_->arm();
+  if (arm == nullptr) throw UserError(cell_->profile().path + ": the profile names no robot");
+  return [arm, command](const worlds::World&) {
+    const safety::SafetyLimits& limits = arm->envelope().limits();
+    teleop::CartesianVelocityOptions options;
+    options.tool_offset_m = limits.tool_offset_m;
+    const std::array<double, 6> qd = teleop::CartesianJointVelocities(
+        arm->State().position_rad, command->velocity_m_s, limits.base_in_table, options);
+    teach::TeacherAction action;
+    for (double v : qd) action.u.push_back(static_cast<float>(v));
+    action.u.push_back(command->close_gripper ? 1.0f : 0.0f);
+    action.finished = command->finish;
+    return action;
+  };
+}
+
+void RealCellSource::EmergencyStop(bool engage, const std::string& reason) {
+  safety::GuardedArm* arm = cell_->arm();
+  if (arm == nullptr) return;
+  if (engage) {
+    arm->EngageEmergencyStop(reason);
+  } else {
+    arm->ReleaseEmergencyStop();
+  }
+}
+
+std::vector<float> RealCellSource::RawBeaconReading() {
+  std::vector<float> reading;
+  for (const devices::BeaconSample& sample : cell_->beacons().Poll()) {
+    reading = {static_cast<float>(sample.position_uwb_m.x()),
+               static_cast<float>(sample.position_uwb_m.y())};
+  }
+  return reading;
+}
+
+}  // namespace recon::studio
