@@ -7,8 +7,6 @@
 #include "devices/teleop/cartesian_velocity.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
-#include "engine/safety/ur5_kinematics.h"
-#include "engine/worlds/ur5_arm.h"
 
 namespace recon::studio {
 
@@ -38,10 +36,9 @@ std::unique_ptr<worlds::World> RealCellSource::MakeWorld(const store::SessionMan
 }
 
 Eigen::Vector3d RealCellSource::GripPoint() const {
+  // The point the envelope keeps above the table, in the table frame: what the teacher steers.
   const safety::GuardedArm* arm = cell_->arm();
-  const safety::SafetyLimits& limits = arm->envelope().limits();
-  return limits.base_in_table *
-         safety::Ur5ToolPoint(arm->State().position_rad, limits.tool_offset_m);
+  return arm->envelope().ToolPoint(arm->State().position_rad);
 }
 
 void RealCellSource::ShowLive(const store::SessionManifest& manifest,
