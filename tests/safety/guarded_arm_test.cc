@@ -15,6 +15,7 @@
 #include "engine/core/rng.h"
 #include "engine/safety/arm_watchdog.h"
 #include "engine/worlds/ur5_arm.h"
+#include "tests/safety/garbage_commands.h"
 #include "tests/worlds/ur5_test_scene.h"
 
 namespace recon::safety {
@@ -144,12 +145,7 @@ TEST(GuardedArmTest, ASimulatedUr5DrivenByGarbageStaysInsideTheEnvelope) {
   Rng rng(99);  // seed 99: 300 control steps (30 s) of a policy gone wrong
   double lowest_z = 1e9, fastest = 0;
   for (int step = 0; step < 300; ++step) {
-    std::array<double, 6> v;
-    for (double& x : v) {
-      const double kind = rng.Uniform(0, 1);
-      x = kind < 0.1 ? std::nan("") : kind < 0.4 ? rng.Uniform(-1e9, 1e9) : rng.Uniform(-2, 2);
-    }
-    arm.CommandJointVelocities(v);
+    arm.CommandJointVelocities(testing::GarbageJointVelocities(rng, {0.1, 0.4, 1e9, 2}));
     simulated.CheckWatchdog();
     ur5.Step(0.1);
     clock.Advance(0.1);

@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/core/rng.h"
 #include "engine/safety/ur5_kinematics.h"
+#include "tests/safety/garbage_commands.h"
 
 namespace recon::safety {
 namespace {
@@ -145,11 +146,7 @@ TEST(SafetyEnvelopeTest, RandomGarbageNeverLeavesTheEnvelope) {
   Rng rng(2026);  // seed 2026: 20000 commands of garbage, integrated from home
   JointVector q = kHome, previous{};
   for (int step = 0; step < 20000; ++step) {
-    JointVector v;
-    for (double& x : v) {
-      const double kind = rng.Uniform(0, 1);
-      x = kind < 0.05 ? std::nan("") : kind < 0.3 ? rng.Uniform(-1e6, 1e6) : rng.Uniform(-3, 3);
-    }
+    const JointVector v = testing::GarbageJointVelocities(rng, {0.05, 0.3, 1e6, 3});
     const SafetyDecision d = envelope.Filter(q, previous, v, kPeriod);
     for (int i = 0; i < 6; ++i) {
       const double out = d.command_rad_s[i];

@@ -14,6 +14,7 @@
 #include "engine/safety/arm_watchdog.h"
 #include "engine/safety/guarded_arm.h"
 #include "engine/safety/safety_envelope.h"
+#include "tests/safety/garbage_commands.h"
 
 namespace recon::robot {
 namespace {
@@ -26,9 +27,7 @@ UrArm::Options ArmOptions(const FakeUrController& controller) {
   return options;
 }
 
-void Sleep(double seconds) {
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-}
+void Sleep(double seconds) { std::this_thread::sleep_for(std::chrono::duration<double>(seconds)); }
 
 TEST(GuardedUrArmTest, AGarbagePolicyNeverReachesTheControllerUnfiltered) {
   FakeUrController controller;
@@ -41,12 +40,7 @@ TEST(GuardedUrArmTest, AGarbagePolicyNeverReachesTheControllerUnfiltered) {
   Rng rng(8);  // seed 8: 30 commands (3 s at 10 Hz) of NaN, huge and plain values
   double fastest_sent = 0, lowest_tool = 1e9;
   for (int step = 0; step < 30; ++step) {
-    std::array<double, 6> v;
-    for (double& x : v) {
-      const double kind = rng.Uniform(0, 1);
-      x = kind < 0.15 ? std::nan("") : kind < 0.5 ? rng.Uniform(-1e12, 1e12) : rng.Uniform(-2, 2);
-    }
-    arm.CommandJointVelocities(v);
+    arm.CommandJointVelocities(safety::testing::GarbageJointVelocities(rng, {0.15, 0.5, 1e12, 2}));
     if (auto sent = controller.last_speedj()) {
       for (double qd : sent->velocity_rad_s) {
         ASSERT_TRUE(std::isfinite(qd));
