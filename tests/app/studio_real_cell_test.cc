@@ -17,12 +17,12 @@
 #include <thread>
 
 #include "app/studio/studio_controller.h"
-#include "devices/camera/image_file.h"
 #include "devices/robot/fake_ur_controller.h"
 #include "devices/uwb/fake_dwm1001.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
+#include "tests/cell/fake_cell_devices.h"
 
 namespace recon::studio {
 namespace {
@@ -55,26 +55,10 @@ class StudioRealCellTest : public ::testing::Test {
     char pattern[] = "/tmp/recon-studio-real-XXXXXX";
     ASSERT_NE(::mkdtemp(pattern), nullptr);
     dir_ = pattern;
-    fs::create_directories(dir_ / "frames");
-    RgbImage frame{160, 120, std::vector<uint8_t>(160 * 120 * 3, 90)};
-    for (int i = 0; i < 3; ++i) {
-      camera::WriteImage((dir_ / "frames" / ("frame_00" + std::to_string(i) + ".png")).string(),
-                         frame);
-    }
+    cell::testing::WriteFrameFolder(dir_ / "frames",
+                                    RgbImage{160, 120, std::vector<uint8_t>(160 * 120 * 3, 90)});
     std::ofstream(dir_ / "tags.json") << R"({"tags": []})";
-    uwb::FakeDwm1001::Options beacon;
-    beacon.period_ms = 20;
-    beacon.node_id = kPlateId;
-    beacon.next_reading = [] {
-      uwb::UwbReading r;
-      r.has_position = true;
-      r.x_m = kPlateUwb_m.x();
-      r.y_m = kPlateUwb_m.y();
-      r.z_m = kPlateUwb_m.z();
-      r.quality = 90;
-      return r;
-    };
-    beacon_ = std::make_unique<uwb::FakeDwm1001>(beacon);
+    beacon_ = cell::testing::StillBeacon(kPlateId, kPlateUwb_m);
     robot_ = std::make_unique<robot::FakeUrController>();
     std::ofstream(dir_ / "cell.json")
         << R"({"camera": {"device": "frames"}, "table_tags": "tags.json",

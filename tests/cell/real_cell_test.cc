@@ -29,6 +29,7 @@
 #include "devices/uwb/fake_dwm1001.h"
 #include "engine/core/error.h"
 #include "engine/worlds/ur5_arm.h"
+#include "tests/cell/fake_cell_devices.h"
 #include "tests/tags/synthetic_scene.h"
 
 namespace recon::cell {
@@ -69,19 +70,7 @@ RgbImage Quadrants() {
 }
 
 std::unique_ptr<uwb::FakeDwm1001> PlateBeacon() {
-  uwb::FakeDwm1001::Options options;
-  options.period_ms = 20;
-  options.node_id = kPlateId;
-  options.next_reading = [] {
-    uwb::UwbReading r;
-    r.has_position = true;
-    r.x_m = kPlateUwb_m.x();
-    r.y_m = kPlateUwb_m.y();
-    r.z_m = kPlateUwb_m.z();
-    r.quality = 90;
-    return r;
-  };
-  return std::make_unique<uwb::FakeDwm1001>(options);
+  return testing::StillBeacon(kPlateId, kPlateUwb_m);
 }
 
 void WriteText(const fs::path& path, const std::string& text) {
@@ -100,12 +89,7 @@ class RealCellTest : public ::testing::Test {
 
   /// A folder of `count` copies of `image` (frame_000.png, ...).
   void WriteFrames(const std::string& folder, const RgbImage& image, int count = 3) {
-    fs::create_directories(dir_ / folder);
-    for (int i = 0; i < count; ++i) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "frame_%03d.png", i);
-      camera::WriteImage((dir_ / folder / name).string(), image);
-    }
+    testing::WriteFrameFolder(dir_ / folder, image, count);
   }
 
   /// A cell.json whose camera is the folder "frames" (relative), with the beacon and, when
