@@ -156,6 +156,20 @@ int main(int argc, char** argv) {
                  "picker with the recent sessions");
   app.add_option("--world", flags.options.world, "task of a new session")->capture_default_str();
   app.add_option("--seed", flags.options.seed, "seed of a new session")->capture_default_str();
+  app.add_option("--layout", flags.options.layout,
+                 "scene layout of a new tabletop session: paper (the plate at one of two "
+                 "places, 2 demonstrations per configuration) or wide")
+      ->check(CLI::IsMember({"paper", "wide"}))
+      ->capture_default_str();
+  app.add_option("--noise", flags.options.beacon_noise_sigma,
+                 "beacon noise sigma per axis of a new simulated session, metres (default: a "
+                 "DWM1001's 0.07 on the tabletop)")
+      ->check(CLI::Range(0.0, 0.5));
+  app.add_option("--demo-noise", flags.options.demo_noise_sigma,
+                 "noise injected into the executed joint velocities while demonstrating in a new "
+                 "session (DART, rad/s; 0 = off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
   app.add_option("--cell", flags.options.cell_profile,
                  "teach with the real devices of this cell profile (JSON: camera, beacons, UR "

@@ -5,6 +5,7 @@
 //   ninja -C build/release learn_bench && build/release/bench/learn_bench
 //
 // BM_TrainStepTorchBackend is BM_TrainStepDynamic2DExact trained through LibTorch autograd.
+// BM_TrainStepSpatialSoftmax* add NetworkConfig::spatial_softmax to it (either backend).
 // The *_Kernels/<name> variants run the same step on each kernel table the CPU supports; the
 // threads:2 variant runs two trainers at once (one per core, as experiment sweeps do).
 // The images are synthetic but shaped like the world's (background uniform integers in
@@ -89,9 +90,10 @@ Dataset WithoutPlay() {
   return data;
 }
 
-void RunSteps(benchmark::State& state, const Dataset& data, TrainConfig train) {
+void RunSteps(benchmark::State& state, const Dataset& data, TrainConfig train,
+              const NetworkConfig& network = NetworkConfig{}) {
   train.restart_rule = false;
-  TrainerImpl trainer(data, NetworkConfig{}, train);
+  TrainerImpl trainer(data, network, train);
   for (int i = 0; i < 20; ++i) trainer.Step();  // warm caches and the allocator
   for (auto _ : state) trainer.Step();
   state.SetItemsProcessed(state.iterations());
@@ -134,6 +136,24 @@ void BM_TrainStepNll(benchmark::State& state) {
   RunSteps(state, WithoutPlay(), train);
 }
 
+// The authors' CNN with the spatial-softmax keypoint layer after its last block: 16 x 5 x 5
+// planes become 32 keypoints, so the first linear layer shrinks from 400 inputs to 32.
+NetworkConfig WithKeypoints() {
+  NetworkConfig network;
+  network.spatial_softmax = true;
+  return network;
+}
+
+void BM_TrainStepSpatialSoftmax(benchmark::State& state) {
+  RunSteps(state, WithoutPlay(), Authors(Method::kRecon), WithKeypoints());
+}
+
+void BM_TrainStepSpatialSoftmaxTorchBackend(benchmark::State& state) {
+  TrainConfig train = Authors(Method::kRecon);
+  train.backend = Backend::kTorch;
+  RunSteps(state, WithoutPlay(), train, WithKeypoints());
+}
+
 void BM_ActBatch100(benchmark::State& state) {
   const Dataset data = WithoutPlay();
   TrainerImpl trainer(data, NetworkConfig{}, Authors(Method::kRecon));
@@ -164,6 +184,8 @@ BENCHMARK(BM_TrainStepTwoTrainersAtOnce)->Unit(benchmark::kMillisecond)->Threads
 BENCHMARK(BM_TrainStepDynamic2DExactPlay)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TrainStepBaseline)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TrainStepNll)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TrainStepSpatialSoftmax)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TrainStepSpatialSoftmaxTorchBackend)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ActBatch100)->Unit(benchmark::kMillisecond);
 
 }  // namespace

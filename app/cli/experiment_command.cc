@@ -1,5 +1,7 @@
 #include "app/cli/experiment_command.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include "engine/experiments/recipe.h"
 #include "engine/experiments/summary.h"
 #include "engine/learn/learner.h"
+#include "engine/worlds/tabletop.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::cli {
@@ -51,6 +54,15 @@ struct ExperimentFlags {
   bool restart = true;
   bool authors_compat = false;
   bool authors_recipe = false;
+  // The tabletop's protocol (docs/cell.md).
+  std::string layout = "paper";
+  std::string observation = "image";
+  double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
+  double demo_noise = 0.0;
+  int random_shift = -1;  ///< -1: the world's recipe
+  int action_chunk = -1;  ///< -1: the world's recipe
+  bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
+  bool standardize_inputs = false;  ///< likewise
 };
 
 std::string DefaultOutDir(const std::string& world) {
@@ -72,6 +84,30 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   std::vector<double> noise = flags.noise;
   if (!conditions_given && !noise_given && flags.world == "dynamic2d") noise = {2.5, 4.5, 6.5};
   config.conditions = experiments::ParseConditions(flags.world, names, noise);
+  if (flags.world == "tabletop") {
+    if (flags.observation == "state") {
+      config.world = "tabletop-state";
+    } else if (flags.observation != "image") {
+      throw UserError("--observation must be 'image' (the camera) or 'state' (the objects' true "
+                      "positions, a diagnostic); got '" + flags.observation + "'");
+    }
+    const std::vector<std::string> layouts = worlds::WorldLayouts(flags.world);
+    if (std::find(layouts.begin(), layouts.end(), flags.layout) == layouts.end()) {
+      throw UserError("--layout '" + flags.layout + "' does not exist; valid: " +
+                      JoinNames(layouts));
+    }
+    config.cell.layout = flags.layout;
+    if (!std::isfinite(flags.beacon_noise) || flags.beacon_noise < 0 ||
+        flags.beacon_noise > worlds::Tabletop::kMaxBeaconNoise_m) {
+      throw UserError("--noise must be between 0 and " +
+                      FormatNumber(worlds::Tabletop::kMaxBeaconNoise_m) + " m (got " +
+                      FormatNumber(flags.beacon_noise) + ")");
+    }
+    for (experiments::Condition& c : config.conditions) {
+      if (c.placement != "none") c.noise_sigma = flags.beacon_noise;
+    }
+    config.demo_noise = flags.demo_noise;
+  }
   config.demos = flags.demos;
   config.runs = flags.runs;
   config.tests = flags.tests;
@@ -102,9 +138,22 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.play_per_scenario = flags.play;
   // The world's recipe (recipe.h) for what the user did not set explicitly.
   const experiments::WorldRecipe recipe =
-      experiments::RecipeForWorld(flags.world, worlds::WorldNeedsRenderer(flags.world));
+      experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
   config.network.policy_hidden = recipe.network.policy_hidden;
   config.network.image_scale = recipe.network.image_scale;
+  config.train.random_shift_px =
+      flags.random_shift >= 0 ? flags.random_shift : recipe.train.random_shift_px;
+  if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
+    config.train.random_shift_px = 0;  // vector observations have no pixels to shift
+  }
+  config.network.action_chunk =
+      flags.action_chunk >= 0 ? flags.action_chunk : recipe.network.action_chunk;
+  config.network.spatial_softmax = command.get_option("--spatial-softmax")->count() > 0
+                                       ? flags.spatial_softmax
+                                       : recipe.network.spatial_softmax;
+  config.train.standardize_inputs = command.get_option("--standardize-inputs")->count() > 0
+                                        ? flags.standardize_inputs
+                                        : recipe.train.standardize_inputs;
   if (command.get_option("--restart")->count() == 0) {
     config.train.restart_rule = recipe.train.restart_rule;
   }
@@ -114,7 +163,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       config.baseline_steps = config.train.steps;
     }
   }
-  if (worlds::WorldNeedsRenderer(flags.world)) {
+  if (worlds::WorldNeedsRenderer(config.world)) {
     config.cell.renderer_factory = render::MujocoRendererFactory();
     config.cell.image_size = flags.image_size;
   }
@@ -233,9 +282,45 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                       "the world's recipe, 3)");
   command->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
       ->capture_default_str();
+  command
+      ->add_option("--random-shift", flags->random_shift,
+                   "random-shift augmentation of camera images, pixels (DrQ; 0 = off; default: "
+                   "the world's recipe)")
+      ->check(CLI::Range(0, 16));
+  command
+      ->add_option("--action-chunk", flags->action_chunk,
+                   "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
+                   "the world's recipe)")
+      ->check(CLI::Range(1, 100));
+  command->add_flag("--spatial-softmax,!--no-spatial-softmax", flags->spatial_softmax,
+                    "end the CNN in a spatial-softmax keypoint layer (default: the world's recipe)");
+  command->add_flag("--standardize-inputs,!--no-standardize-inputs", flags->standardize_inputs,
+                    "standardise the robot state x (and a vector y) per dimension (default: the "
+                    "world's recipe)");
   if (worlds::WorldNeedsRenderer(world)) {
     command->add_option("--image-size", flags->image_size, "camera images are N x N pixels")
         ->check(CLI::Range(16, 480))
+        ->capture_default_str();
+  }
+  if (world == "tabletop") {
+    command
+        ->add_option("--layout", flags->layout,
+                     "paper (the plate at one of two places, 2 demonstrations per configuration) "
+                     "or wide (the plate anywhere along either edge)")
+        ->capture_default_str();
+    command
+        ->add_option("--noise", flags->beacon_noise,
+                     "beacon noise sigma per axis, metres (default: a DWM1001's; 0 = exact)")
+        ->capture_default_str();
+    command
+        ->add_option("--demo-noise", flags->demo_noise,
+                     "noise injected into the executed joint velocities while demonstrating "
+                     "(DART), rad/s; 0 = off")
+        ->capture_default_str();
+    command
+        ->add_option("--observation", flags->observation,
+                     "image (the camera) or state (the objects' true positions: a diagnostic of "
+                     "what is lost to vision)")
         ->capture_default_str();
   }
   command->add_flag("--restart,!--no-restart", flags->restart,

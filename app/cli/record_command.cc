@@ -1,5 +1,6 @@
 #include "app/cli/record_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -32,6 +33,8 @@ struct RecordFlags {
   uint64_t seed = 1;
   int image_size = 64;
   double noise = 0.0;
+  double demo_noise = 0.0;
+  std::string layout;
   std::string calibration;
   bool no_calibration = false;
   std::string rerecord;
@@ -75,7 +78,14 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
     setup.placement = flags.placement.empty() ? m.placement : flags.placement;
     setup.image_size = command.count("--image-size") > 0 ? flags.image_size : m.image_size;
     setup.seed = command.count("--seed") > 0 ? flags.seed : m.seed;
+    setup.layout = flags.layout.empty() ? m.layout : flags.layout;
     teach::CheckSessionMatches(m, setup);
+    for (const char* option : {"--noise", "--demo-noise"}) {
+      if (command.count(option) > 0) {
+        throw UserError(std::string(option) + " is fixed when a session is created; " +
+                        flags.session + " already records with its own (session.json)");
+      }
+    }
     if (session->recovered_temporaries() > 0) {
       std::printf("removed %d unfinished episode file(s) left by an interrupted recording\n",
                   session->recovered_temporaries());
@@ -90,15 +100,50 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
         flags.placement.empty() ? teach::DefaultTeachingPlacement(flags.world) : flags.placement;
     setup.image_size = flags.image_size;
     setup.seed = flags.seed;
+    const std::vector<std::string> layouts = worlds::WorldLayouts(flags.world);
+    if (layouts.empty()) {
+      if (!flags.layout.empty()) {
+        throw UserError("--layout: the " + flags.world + " world has no layouts");
+      }
+    } else {
+      setup.layout = flags.layout.empty() ? layouts.front() : flags.layout;
+      if (std::find(layouts.begin(), layouts.end(), setup.layout) == layouts.end()) {
+        throw UserError("--layout '" + setup.layout + "' does not exist; valid: " +
+                        JoinNames(layouts));
+      }
+    }
+    setup.beacon_noise_sigma =
+        command.count("--noise") > 0 ? flags.noise : worlds::DefaultBeaconNoise(flags.world);
+    setup.demo_noise_sigma = flags.demo_noise;
   }
-  setup.beacon_noise_sigma = flags.noise;
 
   store::SessionManifest probe;
   probe.world = setup.world_name;
   probe.placement = setup.placement;
   probe.image_size = setup.image_size;
-  probe.beacon_noise_sigma = exists ? session->manifest().beacon_noise_sigma : flags.noise;
+  probe.layout = setup.layout;
+  probe.beacon_noise_sigma =
+      exists ? session->manifest().beacon_noise_sigma : setup.beacon_noise_sigma;
   const std::unique_ptr<worlds::World> world = MakeSessionWorld(probe, setup.placement);
+  {
+    const int n = world->DemosPerConfiguration();
+    if (n > 1) {
+      const int first = exists ? session->NextDemoNumber() : 0, last = first + flags.demos - 1;
+      if ((last + 1) % n != 0 && flags.demos > 0) {
+        throw UserError("--demos " + std::to_string(flags.demos) + ": the " + setup.world_name +
+                        " " + setup.layout + " layout records " + std::to_string(n) +
+                        " demonstrations per configuration, and the session would end with "
+                        "configuration " + std::to_string(last / n) + " having " +
+                        std::to_string((last + 1) % n) + " of them; record " +
+                        std::to_string(flags.demos + n - (last + 1) % n) + " instead");
+      }
+      if (flags.demos > 0) {
+        std::printf("demonstrations demo_%d..demo_%d are takes of configurations %d..%d (%d per "
+                    "configuration: plate side and bowl place)\n",
+                    first, last, first / n, last / n, n);
+      }
+    }
+  }
   if (!exists) {
     session.emplace(
         store::Session::Create(flags.session, teach::NewSessionManifest(setup, *world)));
@@ -172,8 +217,19 @@ void AddRecordCommand(CLI::App& app) {
   record->add_option("--image-size", flags->image_size, "camera images are N x N (tabletop)")
       ->check(CLI::Range(16, 480))
       ->capture_default_str();
-  record->add_option("--noise", flags->noise, "beacon noise sigma for a new session")
-      ->check(CLI::NonNegativeNumber);
+  record
+      ->add_option("--noise", flags->noise,
+                   "beacon noise sigma per axis for a new session (default: a DWM1001's 0.07 m "
+                   "on the tabletop, 0 elsewhere)")
+      ->check(CLI::Range(0.0, 0.5));
+  record
+      ->add_option("--demo-noise", flags->demo_noise,
+                   "noise injected into the executed joint velocities while demonstrating, for a "
+                   "new session (DART; rad/s; default 0 = off)")
+      ->check(CLI::Range(0.0, 1.0));
+  record->add_option("--layout", flags->layout,
+                     "scene layout of a new tabletop session: paper (default: the plate at one "
+                     "of two places, 2 demonstrations per configuration) or wide");
   record->add_option("--calibration", flags->calibration,
                      "attach this calibration (from `recon calibrate --out`)");
   record->add_option("--rerecord", flags->rerecord,

@@ -19,6 +19,7 @@ std::unique_ptr<worlds::World> MakeSessionWorld(const store::SessionManifest& ma
     cell.renderer_factory = render::MujocoRendererFactory();
     cell.image_size = manifest.image_size;
   }
+  if (!manifest.layout.empty()) cell.layout = manifest.layout;
   return worlds::MakeWorld(manifest.world, placement, manifest.beacon_noise_sigma, false, cell);
 }
 

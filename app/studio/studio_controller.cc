@@ -1,6 +1,7 @@
 #include "app/studio/studio_controller.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -29,6 +30,7 @@
 #include "engine/teach/stream_health.h"
 #include "engine/teach/workflow.h"
 #include "engine/worlds/tabletop.h"
+#include "engine/worlds/world_factory.h"
 
 namespace recon::studio {
 
@@ -100,14 +102,19 @@ class StudioController::Cell {
       probe.world = options_.world;
       probe.placement = teach::DefaultTeachingPlacement(options_.world);
       probe.image_size = options_.image_size;
-      probe.beacon_noise_sigma = options_.beacon_noise_sigma;
+      probe.beacon_noise_sigma = options_.beacon_noise_sigma.value_or(
+          worlds::DefaultBeaconNoise(options_.world));
+      const std::vector<std::string> layouts = worlds::WorldLayouts(options_.world);
+      probe.layout = layouts.empty() ? "" : options_.layout;
       made = real_ ? real_->MakeWorld(probe, "") : cli::MakeSessionWorld(probe, probe.placement);
       teach::SessionSetup setup;
       setup.world_name = probe.world;
       setup.placement = probe.placement;
       setup.image_size = probe.image_size;
       setup.seed = options_.seed;
-      setup.beacon_noise_sigma = options_.beacon_noise_sigma;
+      setup.beacon_noise_sigma = probe.beacon_noise_sigma;
+      setup.layout = probe.layout;
+      setup.demo_noise_sigma = options_.demo_noise_sigma;
       store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
       if (real_) real_->DescribeInto(manifest);
       opened.emplace(store::Session::Create(dir, manifest));
@@ -461,11 +468,19 @@ class StudioController::Cell {
     return teleop_mode_ == "scripted" ? "scripted-teleop" : teleop_mode_ + "-teleop";
   }
 
-  void StartDemo(uint64_t seed) {
+  /// Starts demonstration demo_<number> (a new one, or one being re-recorded) in its scene: a
+  /// take of its configuration where the world groups them (World::DemosPerConfiguration).
+  void StartDemo(int number, uint64_t seed) {
     teleop_input_ = {};
     teleop_command_ = {};
     recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
-    recorder_->Start(seed);
+    const store::SessionManifest& m = session_->manifest();
+    recorder_->SetActionNoise(m.demo_noise_sigma);
+    if (store::Session::ScenarioSeed(m.seed, number, false) == seed) {
+      teach::StartSessionDemo(*recorder_, *world_, m.seed, number);
+    } else {
+      recorder_->Start(seed);  // recorded from another seed: its own scenario
+    }
   }
 
   void Commit() {
@@ -520,8 +535,8 @@ class StudioController::Cell {
   void Apply(const ui::StartRecording&) {
     RequireIdle("record");
     RequireNoEmergencyStop("record");
-    StartDemo(
-        store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
+    const int number = session_->NextDemoNumber();
+    StartDemo(number, store::Session::ScenarioSeed(session_->manifest().seed, number, false));
     status_ = teleop_mode_ == "scripted"
                   ? "Recording a demonstration (the scripted teacher)."
                   : "Recording a demonstration: drive the arm, Stop and keep when done.";
@@ -543,7 +558,7 @@ class StudioController::Cell {
     RequireIdle("re-record");
     RequireNoEmergencyStop("re-record");
     const store::EpisodeEntry& e = session_->Find(c.name);
-    StartDemo(e.meta.seed);
+    StartDemo(std::atoi(c.name.c_str() + 5), e.meta.seed);
     replace_ = c.name;
     status_ = "Re-recording " + c.name + ".";
   }

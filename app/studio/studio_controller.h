@@ -24,7 +24,13 @@ struct StudioOptions {
   std::string world = "tabletop";
   int image_size = 64;              ///< the policy camera (new sessions)
   uint64_t seed = 1;                ///< new sessions
-  double beacon_noise_sigma = 0.0;  ///< new sessions' simulated beacon noise (metres)
+  /// New sessions' simulated beacon noise (metres); unset: the world's default (a DWM1001's on
+  /// the tabletop, worlds::DefaultBeaconNoise).
+  std::optional<double> beacon_noise_sigma;
+  /// New sessions' tabletop layout ("paper" or "wide").
+  std::string layout = "paper";
+  /// New sessions' demonstration noise (DART, rad/s; 0 = off).
+  double demo_noise_sigma = 0.0;
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;

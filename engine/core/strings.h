@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,13 @@ inline std::string JoinNames(const std::vector<std::string>& names,
   std::string out;
   for (const std::string& name : names) out += (out.empty() ? "" : separator) + name;
   return out;
+}
+
+/// A number as a person would type it in an error message: "0.07", "1e+03", "nan".
+inline std::string FormatNumber(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g", value);
+  return buf;
 }
 
 }  // namespace recon

@@ -63,7 +63,9 @@ std::vector<KnownCondition> Table(const std::string& world) {
   if (world == "dynamic2d") return {std::begin(kDynamic2D), std::end(kDynamic2D)};
   if (world == "static2d") return {std::begin(kStatic2D), std::end(kStatic2D)};
   if (world == "bintransfer") return {std::begin(kBinTransfer), std::end(kBinTransfer)};
-  if (world == "tabletop") return {std::begin(kTabletop), std::end(kTabletop)};
+  if (world == "tabletop" || world == "tabletop-state") {
+    return {std::begin(kTabletop), std::end(kTabletop)};
+  }
   throw UserError("unknown experiment world '" + world +
                   "' (valid: dynamic2d, static2d, bintransfer, tabletop)");
 }
@@ -86,7 +88,9 @@ std::vector<std::string> DefaultConditionNames(const std::string& world) {
   if (world == "dynamic2d") {
     return {"baseline", "exact", "partial", "other", "random", "exact+other", "exact+random"};
   }
-  if (world == "tabletop") return {"baseline", "recon-play"};  // the paper's comparison
+  if (world == "tabletop" || world == "tabletop-state") {
+    return {"baseline", "recon-play"};  // the paper's comparison
+  }
   return KnownConditionNames(world);
 }
 

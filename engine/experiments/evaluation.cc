@@ -1,5 +1,7 @@
 #include "engine/experiments/evaluation.h"
 
+#include "engine/learn/action_ensembler.h"
+
 namespace recon::experiments {
 
 namespace {
@@ -42,13 +44,25 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
   }
   std::vector<std::vector<float>> xs(n), ys(n);
   std::vector<double> action_error(n, 0.0);
+  // A policy that predicts chunks of actions acts on their running ensemble (ACT).
+  const int chunk = policy.action_chunk();
+  std::vector<learn::ActionEnsembler> ensemblers;
+  if (chunk > 1) {
+    ensemblers.assign(n, learn::ActionEnsembler(chunk, policy.spec().u_dim));
+  }
   for (int t = 0; t < steps; ++t) {
     for (size_t i = 0; i < n; ++i) {
       worlds::Observation obs = scenario_worlds[i]->Observe();
       xs[i] = std::move(obs.x);
       ys[i] = std::move(obs.y);
     }
-    const std::vector<std::vector<float>> actions = policy.ActBatch(xs, ys);
+    std::vector<std::vector<float>> actions;
+    if (chunk > 1) {
+      actions = policy.ActChunkBatch(xs, ys);
+      for (size_t i = 0; i < n; ++i) actions[i] = ensemblers[i].Step(actions[i]);
+    } else {
+      actions = policy.ActBatch(xs, ys);
+    }
     for (size_t i = 0; i < n; ++i) {
       if (score_actions) {
         const std::vector<float> expert = scenario_worlds[i]->ExpertAction();

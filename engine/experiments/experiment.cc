@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/core/rng.h"
 #include "engine/core/stats.h"
+#include "engine/core/strings.h"
 #include "engine/experiments/evaluation.h"
 #include "engine/worlds/world_factory.h"
 
@@ -22,6 +23,7 @@ namespace {
 constexpr uint64_t kDemoStream = 1000;
 constexpr uint64_t kTrainStream = 2000;
 constexpr uint64_t kTestStream = 3000;
+constexpr uint64_t kDemoNoiseStream = 4000;
 // Loss curves are averaged over windows so that a figure shows about this many points.
 constexpr int kLossCurvePoints = 120;
 
@@ -50,6 +52,15 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
   if (config.train.steps <= 0 || config.baseline_steps <= 0) {
     throw UserError("--steps and --baseline-steps must be positive");
   }
+  if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 || config.demo_noise > 1.0) {
+    throw UserError("--demo-noise must be between 0 and 1 (action units, rad/s for the arm; got " +
+                    FormatNumber(config.demo_noise) + ")");
+  }
+  {
+    const std::unique_ptr<worlds::World> probe =
+        worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
+    for (int d : config.demos) worlds::CheckDemosFillConfigurations(*probe, d, "--demos");
+  }
   for (const Condition& c : config.conditions) {
     const int d = worlds::MakeWorld(config.world, c.placement, c.noise_sigma, config.authors_compat,
                                     config.cell)
@@ -69,6 +80,8 @@ uint64_t DemoScenarioSeed(uint64_t seed, int run, int index) {
 }
 
 uint64_t TrainSeed(uint64_t seed, int run) { return Rng::Derive(seed, kTrainStream + run); }
+
+uint64_t DemoNoiseSeed(uint64_t seed, int run) { return Rng::Derive(seed, kDemoNoiseStream + run); }
 
 uint64_t TestScenarioSeed(uint64_t seed, int index) {
   return Rng::Derive(Rng::Derive(seed, kTestStream), index);
@@ -98,7 +111,8 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   const int play_recipe =
       config.play_per_scenario >= 0 ? config.play_per_scenario : world->PlaySamplesPerScenario();
   const int play = condition.use_play ? play_recipe : 0;
-  const Dataset data = worlds::RecordDemonstrations(*world, scenario_seeds, play);
+  const Dataset data = worlds::RecordDemonstrations(
+      *world, scenario_seeds, play, {config.demo_noise, DemoNoiseSeed(config.seed, task.run)});
   result.demo_samples = data.NumDemoSamples();
 
   learn::TrainConfig train = config.train;

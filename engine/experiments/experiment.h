@@ -32,6 +32,9 @@ struct ExperimentConfig {
   /// Play samples recorded per demonstration scenario for conditions that use play; -1 takes
   /// the world's own recipe (World::PlaySamplesPerScenario).
   int play_per_scenario = -1;
+  /// Noise injected into the executed actions while the demonstrations are recorded (DART,
+  /// worlds::DemoNoise), in the action's units; 0 = off.
+  double demo_noise = 0.0;
 };
 
 /// The outcome of one training run of one condition.
@@ -81,6 +84,8 @@ uint64_t DemoScenarioSeed(uint64_t seed, int run, int index);
 uint64_t TrainSeed(uint64_t seed, int run);
 /// Seed of test scenario `index` (the same for every condition and run).
 uint64_t TestScenarioSeed(uint64_t seed, int index);
+/// Seed of the noise injected into run `run`'s demonstrations (ExperimentConfig::demo_noise).
+uint64_t DemoNoiseSeed(uint64_t seed, int run);
 
 /// Steps a condition trains for: the Baseline has its own count (the authors halve it).
 int TrainSteps(const ExperimentConfig& config, const Condition& condition);

@@ -161,6 +161,7 @@ std::string WorldTitle(const ExperimentConfig& config) {
   if (config.world == "static2d") return "Static 2D";
   if (config.world == "bintransfer") return "Bin transfer";
   if (config.world == "tabletop") return "Tabletop";
+  if (config.world == "tabletop-state") return "Tabletop, true object positions (diagnostic)";
   return config.world;
 }
 

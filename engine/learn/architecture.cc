@@ -79,6 +79,8 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
   Require(n.feature_dim > 0, "feature_dim must be positive");
   RequirePositive(n.policy_hidden, "policy_hidden");
   RequirePositive(n.beacon_hidden, "beacon_hidden");
+  Require(n.action_chunk >= 1 && n.action_chunk <= kMaxActionChunk,
+          "action_chunk must be between 1 and " + std::to_string(kMaxActionChunk));
   Architecture arch;
   arch.spec = spec;
   arch.network = network;
@@ -114,7 +116,16 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
       h = conv.pool_h;
       w = conv.pool_w;
     }
-    arch.feature = MakeMlp(channels * h * w, n.cnn_hidden, Activation::kRelu, Activation::kRelu,
+    int cnn_features = channels * h * w;
+    if (n.spatial_softmax) {
+      arch.spatial_softmax = true;
+      arch.keypoints.channels = channels;
+      arch.keypoints.h = h;
+      arch.keypoints.w = w;
+      arch.keypoints.log_temperature = layout.Take(1);
+      cnn_features = 2 * channels;
+    }
+    arch.feature = MakeMlp(cnn_features, n.cnn_hidden, Activation::kRelu, Activation::kRelu,
                            n.feature_dim, layout);
   } else {
     RequirePositive(n.feature_mlp_hidden, "feature_mlp_hidden");
@@ -122,7 +133,7 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
                            Activation::kRelu, Activation::kRelu, n.feature_dim, layout);
   }
   arch.policy = MakeMlp(spec.x_dim + n.feature_dim, n.policy_hidden, Activation::kTanh,
-                        Activation::kRelu, 2 * spec.u_dim, layout);
+                        Activation::kRelu, 2 * spec.u_dim * n.action_chunk, layout);
   if (method == Method::kRecon && spec.b_dim > 0) {
     arch.beacon = MakeMlp(n.feature_dim, n.beacon_hidden, Activation::kTanh, Activation::kTanh,
                           2 * spec.b_dim, layout);
@@ -138,6 +149,8 @@ void InitializeParameters(const Architecture& arch, Rng& rng, float* params) {
     FillUniform(rng, bound, params + conv.weight, static_cast<int64_t>(conv.out_channels) * fan_in);
     FillUniform(rng, bound, params + conv.bias, conv.out_channels);
   }
+  // Set, not drawn: with the layer off the draws, and so every seed's weights, are unchanged.
+  if (arch.spatial_softmax) params[arch.keypoints.log_temperature] = 0.0f;
   InitMlp(arch.feature, false, rng, params);
   InitMlp(arch.policy, true, rng, params);
   InitMlp(arch.beacon, true, rng, params);

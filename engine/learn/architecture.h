@@ -14,6 +14,9 @@ namespace recon::learn {
 
 enum class Activation { kNone, kRelu, kTanh };
 
+/// The longest action chunk a policy may predict (NetworkConfig::action_chunk): 10 s at 10 Hz.
+constexpr int kMaxActionChunk = 100;
+
 /// A fully connected layer y = act(W x + bias); W is row-major [out][in] (PyTorch's layout).
 /// `weight` and `bias` are offsets into the flat parameter buffer.
 struct LinearLayer {
@@ -31,6 +34,16 @@ struct ConvLayer {
   int64_t weight = 0, bias = 0;
 };
 
+/// The spatial softmax after the last convolution block (NetworkConfig::spatial_softmax): per
+/// channel, a softmax over its h x w plane of f / T, and the expected pixel coordinates under it.
+/// Output row: [x_0, y_0, x_1, y_1, ...], x across columns and y across rows, both from -1 at the
+/// first pixel's centre to +1 at the last's. T is stored as log T (one float), which keeps it
+/// positive under any Adam step and makes its steps relative: starts at 0, i.e. T = 1.
+struct SpatialSoftmaxLayer {
+  int channels = 0, h = 0, w = 0;
+  int64_t log_temperature = 0;  ///< offset of log T in the flat parameter buffer
+};
+
 /// The feature net (CNN on the image y, or MLP on [x, y] for a vector y), the policy on
 /// [x, phi] with a [mean | log-variance] head of 2 u values, and for RECON the beacon net on phi
 /// with a head of 2 d values.
@@ -39,12 +52,16 @@ struct Architecture {
   NetworkConfig network;
   Method method = Method::kRecon;
   std::vector<ConvLayer> convs;      // empty for a vector y
+  bool spatial_softmax = false;      // image only; then `keypoints` feeds `feature`
+  SpatialSoftmaxLayer keypoints;     // laid out after the convolutions, before `feature`
   std::vector<LinearLayer> feature;  // after the convolutions, or the whole MLP
   std::vector<LinearLayer> policy;   // last layer is the head
   std::vector<LinearLayer> beacon;   // empty for the Baseline
   int64_t num_params = 0;
 
   bool image() const { return spec.YIsImage(); }
+  /// Values of one policy target row: u_dim times the action chunk.
+  int action_width() const { return spec.u_dim * network.action_chunk; }
   int feature_dim() const { return network.feature_dim; }
   bool has_beacon_net() const { return !beacon.empty(); }
 };
@@ -55,7 +72,8 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
 
 /// The authors' initialisation: Xavier-uniform weights and zero biases for linear layers,
 /// PyTorch's default for convolutions (kaiming-uniform with a = sqrt(5), i.e. U(+-1/sqrt(fan_in))
-/// for weights and biases). All draws come from `rng`, so a seed fixes the model.
+/// for weights and biases). All draws come from `rng`, so a seed fixes the model. The spatial
+/// softmax's temperature starts at 1 and draws nothing.
 void InitializeParameters(const Architecture& arch, Rng& rng, float* params);
 
 }  // namespace recon::learn

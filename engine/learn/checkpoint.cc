@@ -60,6 +60,7 @@ std::string StateToJson(const TrainerState& s, uint64_t fingerprint) {
   j["adam_step"] = s.adam_step;
   j["batch_rng"] = RngToJson(s.batch_rng);
   j["noise_rng"] = RngToJson(s.noise_rng);
+  j["augment_rng"] = RngToJson(s.augment_rng);
   j["last"] = {{"attempt", s.last.attempt},         {"step", s.last.step},
                {"action_loss", s.last.action_loss}, {"beacon_loss", s.last.beacon_loss},
                {"play_loss", s.last.play_loss},     {"total_loss", s.last.total_loss}};
@@ -76,6 +77,8 @@ void StateFromJson(const std::string& text, TrainerState& s, uint64_t& fingerpri
     s.adam_step = j.at("adam_step").get<int64_t>();
     s.batch_rng = RngFromJson(j.at("batch_rng"));
     s.noise_rng = RngFromJson(j.at("noise_rng"));
+    // Checkpoints from before augmentation: it was off, so the stream was never drawn from.
+    if (j.contains("augment_rng")) s.augment_rng = RngFromJson(j.at("augment_rng"));
     const json& last = j.at("last");
     s.last.attempt = last.at("attempt").get<int>();
     s.last.step = last.at("step").get<int>();

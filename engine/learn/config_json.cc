@@ -37,6 +37,8 @@ std::string ToJson(const NetworkConfig& n) {
   j["conv_kernel"] = n.conv_kernel;
   j["cnn_hidden"] = n.cnn_hidden;
   j["image_scale"] = n.image_scale;
+  j["spatial_softmax"] = n.spatial_softmax;
+  j["action_chunk"] = n.action_chunk;
   j["feature_mlp_hidden"] = n.feature_mlp_hidden;
   j["policy_hidden"] = n.policy_hidden;
   j["beacon_hidden"] = n.beacon_hidden;
@@ -55,6 +57,8 @@ std::string ToJson(const TrainConfig& t) {
   j["play_weight"] = t.play_weight;
   j["restart_rule"] = t.restart_rule;
   j["standardize_targets"] = t.standardize_targets;
+  j["random_shift_px"] = t.random_shift_px;
+  j["standardize_inputs"] = t.standardize_inputs;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
   j["restart_beacon_threshold"] = t.restart_beacon_threshold;
@@ -81,6 +85,10 @@ NetworkConfig NetworkConfigFromJson(const std::string& text) {
   Read(j, "conv_kernel", n.conv_kernel, what);
   Read(j, "cnn_hidden", n.cnn_hidden, what);
   Read(j, "image_scale", n.image_scale, what);
+  // Configs from before the layer existed have no such field: their networks had no layer.
+  if (j.contains("spatial_softmax")) Read(j, "spatial_softmax", n.spatial_softmax, what);
+  // Configurations from before chunking predict one action.
+  if (j.contains("action_chunk")) Read(j, "action_chunk", n.action_chunk, what);
   Read(j, "feature_mlp_hidden", n.feature_mlp_hidden, what);
   Read(j, "policy_hidden", n.policy_hidden, what);
   Read(j, "beacon_hidden", n.beacon_hidden, what);
@@ -108,6 +116,11 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   Read(j, "restart_action_threshold", t.restart_action_threshold, what);
   Read(j, "restart_beacon_threshold", t.restart_beacon_threshold, what);
   Read(j, "seed", t.seed, what);
+  // Checkpoints from before augmentation existed trained without it.
+  if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
+  if (j.contains("standardize_inputs")) {
+    Read(j, "standardize_inputs", t.standardize_inputs, what);
+  }
   // Checkpoints from before the Torch backend have no such field: they trained on our kernels.
   if (j.contains("backend")) {
     std::string backend;

@@ -56,6 +56,11 @@ struct NetworkConfig {
   std::vector<int> cnn_hidden = {120, 60};
   /// y is multiplied by this before the CNN. The authors feed raw 0-255 values (scale 1).
   float image_scale = 1.0f;
+  /// Replace the flattened C x H x W output of the last convolution block by 2 C keypoints: per
+  /// channel, the expected image coordinates (x, y in [-1, 1]) under a softmax over the plane
+  /// with a learned temperature (Levine, Finn et al., deep spatial autoencoders; robomimic's
+  /// VisualCore). Off by default, the authors' networks; configs written before it read as off.
+  bool spatial_softmax = false;
 
   // Vector feature network (y is {m}): an MLP on [x, y] with ReLU hidden layers.
   std::vector<int> feature_mlp_hidden = {64, 64};
@@ -64,6 +69,12 @@ struct NetworkConfig {
   std::vector<int> policy_hidden = {32, 32};
   /// Beacon net on phi: tanh hidden layers, Gaussian head.
   std::vector<int> beacon_hidden = {16, 16};
+
+  /// Action chunking (Zhao et al., ACT 2023): the policy predicts the next action_chunk actions
+  /// at once (trained on u_t .. u_{t+k-1}, the episode's last action repeated past its end), and
+  /// an acting robot averages the overlapping predictions for the current step
+  /// (ActionEnsembler). 1 (the default) = one action per step.
+  int action_chunk = 1;
 
   bool operator==(const NetworkConfig& other) const = default;
 };
@@ -89,6 +100,10 @@ struct TrainConfig {
   /// Keeps the NLL from stalling on large targets (target_scaling.h). Losses and the restart
   /// rule's errors are then in standardised units. The authors' recipe trains on raw targets.
   bool standardize_targets = true;
+  /// Also standardise the inputs: the robot state x (and a vector y) per dimension, from the
+  /// training data, stored with the model and applied when acting (robomimic and LeRobot do).
+  /// Off by default, so models and results without it are unchanged.
+  bool standardize_inputs = false;
   bool restart_rule = false;
   int max_attempts = 5;
   double restart_action_threshold = 0.1;
@@ -97,6 +112,10 @@ struct TrainConfig {
   /// Only the gradient's computation differs (see Backend); a checkpoint written before this
   /// setting existed reads as kFused.
   Backend backend = Backend::kFused;
+  /// Random-shift augmentation of camera images (DrQ): each image of a batch is shifted by up to
+  /// this many pixels per axis, border replicated, drawn from its own seeded stream. 0 = off (and
+  /// no random numbers drawn, so results without it are unchanged); at most kMaxRandomShiftPx.
+  int random_shift_px = 0;
 
   bool operator==(const TrainConfig& other) const = default;
 };
@@ -145,6 +164,13 @@ class Policy {
   /// Mean actions for many observations at once (rows), much faster than one at a time.
   std::vector<std::vector<float>> ActBatch(const std::vector<std::vector<float>>& xs,
                                            const std::vector<std::vector<float>>& ys) const;
+  /// Actions the policy predicts at once (NetworkConfig::action_chunk; 1 without chunking).
+  int action_chunk() const;
+  /// The whole predicted chunk per observation: action_chunk() actions of u_dim values, the
+  /// current step's first. Act and ActBatch return only its first action; a robot that acts on
+  /// chunks averages them over steps with an ActionEnsembler.
+  std::vector<std::vector<float>> ActChunkBatch(const std::vector<std::vector<float>>& xs,
+                                                const std::vector<std::vector<float>>& ys) const;
   /// The beacon net's mean prediction from the features of (x, y) (RECON only; empty for a
   /// Baseline). Lets a user see what the features learned to track.
   std::vector<float> PredictBeacon(const std::vector<float>& x, const std::vector<float>& y) const;

@@ -13,6 +13,7 @@ void ModelBuffers::Resize(const Architecture& arch, int batch_size) {
   y.assign(n, nullptr);
   if (arch.image()) {
     convs.Resize(arch.convs, batch);
+    if (arch.spatial_softmax) keypoints.Resize(arch.keypoints, batch);
   } else {
     mlp_input.assign(n * arch.feature.front().in, 0.0f);
   }
@@ -28,7 +29,12 @@ void ModelBuffers::Resize(const Architecture& arch, int batch_size) {
 void ForwardFeatures(const Architecture& arch, const float* params, ModelBuffers& buffers) {
   if (arch.image()) {
     ConvStackForward(arch.convs, params, buffers.y.data(), buffers.convs);
-    MlpForward(arch.feature, params, buffers.convs.output(), buffers.feature);
+    const float* cnn_features = buffers.convs.output();
+    if (arch.spatial_softmax) {
+      SpatialSoftmaxForward(arch.keypoints, params, cnn_features, buffers.keypoints);
+      cnn_features = buffers.keypoints.output();
+    }
+    MlpForward(arch.feature, params, cnn_features, buffers.feature);
     return;
   }
   const int x_dim = arch.spec.x_dim;
@@ -76,7 +82,13 @@ void Backward(const Architecture& arch, const float* params, const float* grad_p
       buffers.grad_phi[i] += buffers.grad_beacon_input[i];
     }
   }
-  if (arch.image()) {
+  if (arch.image() && arch.spatial_softmax) {
+    MlpBackward(arch.feature, params, buffers.keypoints.output(), buffers.grad_phi.data(),
+                buffers.feature, grads, buffers.keypoints.grad_output());
+    SpatialSoftmaxBackward(arch.keypoints, params, buffers.convs.output(), buffers.keypoints, grads,
+                           buffers.convs.grad_output());
+    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads);
+  } else if (arch.image()) {
     MlpBackward(arch.feature, params, buffers.convs.output(), buffers.grad_phi.data(),
                 buffers.feature, grads, buffers.convs.grad_output());
     ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads);

@@ -9,6 +9,7 @@
 #include "engine/learn/architecture.h"
 #include "engine/learn/conv_stack.h"
 #include "engine/learn/mlp.h"
+#include "engine/learn/spatial_softmax.h"
 
 namespace recon::learn {
 
@@ -16,10 +17,11 @@ namespace recon::learn {
 /// forward functions it needs, then Backward.
 struct ModelBuffers {
   int batch = 0;
-  std::vector<float> x;          ///< [batch][x_dim]
-  std::vector<const float*> y;   ///< per sample: the image (times image_scale) or the vector y
-  ConvStackBuffers convs;        ///< image feature net only
-  std::vector<float> mlp_input;  ///< vector feature net only: [batch][x_dim + m]
+  std::vector<float> x;             ///< [batch][x_dim]
+  std::vector<const float*> y;      ///< per sample: the image (times image_scale) or the vector y
+  ConvStackBuffers convs;           ///< image feature net only
+  SpatialSoftmaxBuffers keypoints;  ///< image feature net with Architecture::spatial_softmax
+  std::vector<float> mlp_input;     ///< vector feature net only: [batch][x_dim + m]
   MlpBuffers feature, policy, beacon;
   std::vector<float> policy_input, grad_policy_input, grad_beacon_input, grad_phi;
 

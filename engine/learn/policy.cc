@@ -57,17 +57,21 @@ void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& 
     float* y = images_.data() + static_cast<size_t>(b) * y_size;
     const std::vector<float>& source = ys[begin + b];
     for (int64_t i = 0; i < y_size; ++i) y[i] = source[i] * scale;
+    if (scaling_.ScalesInputs()) {
+      scaling_.ApplyToInputs(buffers_.x.data() + static_cast<size_t>(b) * x_dim, y);
+    }
     buffers_.y[b] = y;
   }
   // Inference-only use of the training passes: no gradients are computed.
   ForwardFeatures(arch_, params_.data(), buffers_);
   const float* rows = buffers_.phi();
   int stride = arch_.feature_dim(), width = arch_.feature_dim();
-  if (output == Output::kAction) {
+  if (output == Output::kAction || output == Output::kActionChunk) {
     ForwardPolicy(arch_, params_.data(), buffers_);
-    width = arch_.spec.u_dim;
-    stride = 2 * width;
-    scaling_.RestoreActions(buffers_.policy.out.back().data(), count, stride);
+    // The head holds the means of the whole chunk, then their log-variances.
+    stride = 2 * arch_.action_width();
+    width = output == Output::kActionChunk ? arch_.action_width() : arch_.spec.u_dim;
+    scaling_.RestoreActions(buffers_.policy.out.back().data(), count, stride, width);
     rows = buffers_.policy_head();
   } else if (output == Output::kBeacon) {
     ForwardBeacon(arch_, params_.data(), buffers_);
@@ -106,6 +110,13 @@ std::vector<float> Policy::Act(const std::vector<float>& x, const std::vector<fl
 std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<float>>& xs,
                                                  const std::vector<std::vector<float>>& ys) const {
   return Require(impl_).Run(PolicyImpl::Output::kAction, xs, ys);
+}
+
+int Policy::action_chunk() const { return Require(impl_).arch().network.action_chunk; }
+
+std::vector<std::vector<float>> Policy::ActChunkBatch(
+    const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys) const {
+  return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys);
 }
 
 std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,

@@ -16,7 +16,8 @@ class PolicyImpl {
  public:
   PolicyImpl(Architecture arch, const std::vector<float>& params, TargetScaling scaling);
 
-  enum class Output { kAction, kBeacon, kFeatures };
+  /// kAction: the first action of the chunk; kActionChunk: all of it (u_dim * action_chunk).
+  enum class Output { kAction, kActionChunk, kBeacon, kFeatures };
 
   /// One row of `output` per observation (action means, beacon means or features). Checks the
   /// sizes of x and y (UserError). Serialised by a mutex: copies of a Policy share this object.

@@ -1,5 +1,7 @@
 #include "engine/learn/setup_check.h"
 
+#include "engine/learn/augmentation.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -41,7 +43,16 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
     throw UserError("train config: max_attempts must be at least 1 (got " +
                     std::to_string(train.max_attempts) + ")");
   }
+  if (train.random_shift_px < 0 || train.random_shift_px > kMaxRandomShiftPx) {
+    throw UserError("train config: random_shift_px must be between 0 and " +
+                    std::to_string(kMaxRandomShiftPx) + " pixels (got " +
+                    std::to_string(train.random_shift_px) + ")");
+  }
   ValidateDataset(data, "training data");
+  if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
+    throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +
+                    data.spec.ToString() + "); set it to 0");
+  }
   if (train.method == Method::kRecon) {
     const int d = data.spec.b_dim, k = network.feature_dim;
     if (d == 0) {

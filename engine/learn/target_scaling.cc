@@ -45,12 +45,16 @@ void Standardise(std::vector<float>& values, const std::vector<float>& offset,
   }
 }
 
-void Restore(float* rows, int count, int stride, const std::vector<float>& offset,
+// `width` values per row, a multiple of the offsets' size (a chunk of several actions).
+void Restore(float* rows, int count, int stride, int width, const std::vector<float>& offset,
              const std::vector<float>& scale) {
   const size_t dim = offset.size();
+  if (dim == 0) return;
   for (int r = 0; r < count; ++r) {
     float* row = rows + static_cast<size_t>(r) * stride;
-    for (size_t k = 0; k < dim; ++k) row[k] = row[k] * scale[k] + offset[k];
+    for (size_t k = 0; k < static_cast<size_t>(width); ++k) {
+      row[k] = row[k] * scale[k % dim] + offset[k % dim];
+    }
   }
 }
 
@@ -72,33 +76,67 @@ TargetScaling TargetScaling::Fit(const TrainingData& data) {
   return t;
 }
 
+void TargetScaling::FitInputs(const TrainingData& data) {
+  FitColumns({&data.demo_x, &data.play_x}, data.spec.x_dim, x_offset, x_scale);
+  if (data.spec.YIsImage()) return;
+  const int y_dim = static_cast<int>(data.y_size);
+  const std::vector<float> demo_y(data.demo_y.begin(), data.demo_y.end());
+  const std::vector<float> play_y(data.play_y.begin(), data.play_y.end());
+  FitColumns({&demo_y, &play_y}, y_dim, y_offset, y_scale);
+}
+
+void TargetScaling::ApplyToInputs(float* x, float* y) const {
+  if (x != nullptr) {
+    for (size_t k = 0; k < x_offset.size(); ++k) x[k] = (x[k] - x_offset[k]) / x_scale[k];
+  }
+  if (y == nullptr) return;
+  for (size_t k = 0; k < y_offset.size(); ++k) y[k] = (y[k] - y_offset[k]) / y_scale[k];
+}
+
 void TargetScaling::Apply(TrainingData& data) const {
   Standardise(data.demo_u, u_offset, u_scale);
   Standardise(data.demo_b, b_offset, b_scale);
   Standardise(data.play_b, b_offset, b_scale);
+  Standardise(data.demo_x, x_offset, x_scale);
+  Standardise(data.play_x, x_offset, x_scale);
+  if (!y_offset.empty()) {
+    for (int64_t i = 0; i < data.num_demo; ++i) {
+      ApplyToInputs(nullptr, data.demo_y.data() + i * data.y_size);
+    }
+    for (int64_t i = 0; i < data.num_play; ++i) {
+      ApplyToInputs(nullptr, data.play_y.data() + i * data.y_size);
+    }
+  }
 }
 
-void TargetScaling::RestoreActions(float* rows, int count, int stride) const {
-  Restore(rows, count, stride, u_offset, u_scale);
+void TargetScaling::RestoreActions(float* rows, int count, int stride, int width) const {
+  Restore(rows, count, stride, width < 0 ? static_cast<int>(u_offset.size()) : width, u_offset,
+          u_scale);
 }
 
 void TargetScaling::RestoreBeacons(float* rows, int count, int stride) const {
-  Restore(rows, count, stride, b_offset, b_scale);
+  Restore(rows, count, stride, static_cast<int>(b_offset.size()), b_offset, b_scale);
 }
 
 std::vector<float> TargetScaling::Flatten() const {
   std::vector<float> flat;
-  for (const std::vector<float>* v : {&u_offset, &u_scale, &b_offset, &b_scale}) {
+  for (const std::vector<float>* v :
+       {&u_offset, &u_scale, &b_offset, &b_scale, &x_offset, &x_scale, &y_offset, &y_scale}) {
     flat.insert(flat.end(), v->begin(), v->end());
   }
   return flat;
 }
 
 TargetScaling TargetScaling::Unflatten(const DataSpec& spec, const std::vector<float>& flat) {
-  const size_t u = spec.u_dim, b = spec.b_dim;
-  if (flat.size() != 2 * (u + b)) {
+  const size_t u = spec.u_dim, b = spec.b_dim, x = spec.x_dim;
+  const size_t y = spec.YIsImage() ? 0 : static_cast<size_t>(spec.YSize());
+  // Targets only (every checkpoint before input scaling, and those trained without it), or
+  // targets and inputs.
+  const bool inputs = flat.size() == 2 * (u + b + x + y);
+  if (flat.size() != 2 * (u + b) && !inputs) {
     throw UserError("target scaling holds " + std::to_string(flat.size()) + " values, expected " +
-                    std::to_string(2 * (u + b)));
+                    std::to_string(2 * (u + b)) + " (targets) or " +
+                    std::to_string(2 * (u + b + x + y)) + " (targets and inputs)");
   }
   for (float v : flat) {
     if (!std::isfinite(v)) throw UserError("target scaling holds a non-finite value");
@@ -113,6 +151,12 @@ TargetScaling TargetScaling::Unflatten(const DataSpec& spec, const std::vector<f
   t.u_scale = take(u);
   t.b_offset = take(b);
   t.b_scale = take(b);
+  if (inputs) {
+    t.x_offset = take(x);
+    t.x_scale = take(x);
+    t.y_offset = take(y);
+    t.y_scale = take(y);
+  }
   return t;
 }
 

@@ -17,9 +17,21 @@ namespace recon::learn {
 struct TrainingData;
 
 /// target_standardised = (target - offset) / scale, per dimension; outputs are mapped back.
+/// Optionally the inputs too (TrainConfig::standardize_inputs): the robot state x and a vector
+/// observation y, standardised the same way before the networks see them, in training and when
+/// acting. Empty input vectors mean "inputs as recorded".
 struct TargetScaling {
   std::vector<float> u_offset, u_scale;  ///< u_dim each
   std::vector<float> b_offset, b_scale;  ///< b_dim each
+  std::vector<float> x_offset, x_scale;  ///< x_dim each, or empty
+  std::vector<float> y_offset, y_scale;  ///< a vector y's size each, or empty (images: always)
+
+  bool ScalesInputs() const { return !x_offset.empty(); }
+  /// Adds input standardisation fitted on `data` (x over demonstrations and play; a vector y
+  /// too). Call before Apply.
+  void FitInputs(const TrainingData& data);
+  /// Standardises one observation's x (and vector y) in place, as the networks saw them.
+  void ApplyToInputs(float* x, float* y) const;
 
   /// Offsets 0 and scales 1: the authors' recipe (raw targets).
   static TargetScaling Identity(const DataSpec& spec);
@@ -29,11 +41,13 @@ struct TargetScaling {
 
   /// Rewrites the targets stored in `data` in standardised units.
   void Apply(TrainingData& data) const;
-  /// Maps `rows` rows of head means (row stride `stride`) back to the user's units, in place.
-  void RestoreActions(float* rows, int count, int stride) const;
+  /// Maps `rows` rows of head means (row stride `stride`) back to the user's units, in place:
+  /// `width` values per row (a chunk of actions; -1: one action).
+  void RestoreActions(float* rows, int count, int stride, int width = -1) const;
   void RestoreBeacons(float* rows, int count, int stride) const;
 
-  /// Offsets then scales of u, then of b, as one flat vector (for checkpoints), and back.
+  /// Offsets then scales of u, then of b (then of x and y when inputs are scaled), as one flat
+  /// vector (for checkpoints), and back.
   std::vector<float> Flatten() const;
   static TargetScaling Unflatten(const DataSpec& spec, const std::vector<float>& flat);
 

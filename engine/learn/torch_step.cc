@@ -20,6 +20,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engine/learn/spatial_softmax.h"
+
 namespace recon::learn {
 
 namespace {
@@ -49,7 +51,8 @@ at::Tensor HeadLoss(LossKind kind, const at::Tensor& head, const at::Tensor& tar
 struct TorchStep::Impl {
   Architecture arch;
   TrainConfig train;
-  at::Tensor demo_y, play_y;  ///< the batch's y rows gathered (the trainer holds pointers)
+  at::Tensor demo_y, play_y;    ///< the batch's y rows gathered (the trainer holds pointers)
+  at::Tensor x_coord, y_coord;  ///< spatial softmax only: [h * w] coordinates of each position
 
   // Per step: the parameter leaves in layout order, and the weighted loss to differentiate.
   std::vector<at::Tensor> leaves;
@@ -93,7 +96,13 @@ struct TorchStep::Impl {
                      Leaf(params, c.bias, {c.out_channels}));
       h = at::relu(at::max_pool2d(h, {2, 2}));  // our kernels' order (pool_relu_forward)
     }
-    return Mlp(arch.feature, params, h.flatten(1));
+    if (!arch.spatial_softmax) return Mlp(arch.feature, params, h.flatten(1));
+    // As spatial_softmax.cc: logits f * (1 / T), softmax per plane, expected coordinates,
+    // interleaved per channel as [x_0, y_0, x_1, y_1, ...].
+    const at::Tensor log_t = Leaf(params, arch.keypoints.log_temperature, {1});
+    const at::Tensor s = at::softmax(h.flatten(2) * at::exp(-log_t), 2);
+    const at::Tensor keypoints = at::stack({(s * x_coord).sum(2), (s * y_coord).sum(2)}, 2);
+    return Mlp(arch.feature, params, keypoints.flatten(1));
   }
 };
 
@@ -105,6 +114,20 @@ TorchStep::TorchStep(const Architecture& arch, const TrainConfig& train)
   shape.insert(shape.begin(), train.batch_size);
   impl_->demo_y = at::empty(shape, at::kFloat);
   impl_->play_y = at::empty(shape, at::kFloat);
+  if (arch.spatial_softmax) {
+    const SpatialSoftmaxLayer& k = arch.keypoints;
+    const std::vector<float> xs = KeypointCoordinates(k.w), ys = KeypointCoordinates(k.h);
+    // Row-major planes: position r * w + c has x = xs[c], y = ys[r].
+    std::vector<float> x_at, y_at;
+    for (int r = 0; r < k.h; ++r) {
+      for (int c = 0; c < k.w; ++c) {
+        x_at.push_back(xs[c]);
+        y_at.push_back(ys[r]);
+      }
+    }
+    impl_->x_coord = Wrap(x_at.data(), {k.h * k.w}).clone();
+    impl_->y_coord = Wrap(y_at.data(), {k.h * k.w}).clone();
+  }
 }
 
 TorchStep::~TorchStep() = default;
@@ -121,8 +144,11 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
 
   const at::Tensor x = Wrap(batch.demo->x.data(), {n, spec.x_dim});
   const at::Tensor phi = s.Features(params, *batch.demo, s.demo_y);
-  const at::Tensor action = HeadLoss(kind, s.Mlp(s.arch.policy, params, at::cat({x, phi}, 1)),
-                                     Wrap(batch.target_u, {n, spec.u_dim}), batch.noise_u);
+  // Per action of the chunk, as the fused backend does (trainer.cc).
+  const at::Tensor action =
+      HeadLoss(kind, s.Mlp(s.arch.policy, params, at::cat({x, phi}, 1)),
+               Wrap(batch.target_u, {n, s.arch.action_width()}), batch.noise_u) /
+      static_cast<double>(s.arch.network.action_chunk);
   at::Tensor total = action * s.train.action_weight;
   metrics.action_loss = action.item<float>();
   if (s.arch.has_beacon_net()) {

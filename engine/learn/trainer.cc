@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/learn/augmentation.h"
 #include "engine/learn/kernels.h"
 #include "engine/learn/losses.h"
 #include "engine/learn/policy_impl.h"
@@ -19,7 +20,7 @@ constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kAdamEps = 1e-8f;
 constexpr int kEvalChunk = 256;
 
 // Independent streams of one attempt's seed: weights, batch indices, sampling noise.
-enum Stream : uint64_t { kInitStream = 0, kBatchStream = 1, kNoiseStream = 2 };
+enum Stream : uint64_t { kInitStream = 0, kBatchStream = 1, kNoiseStream = 2, kAugmentStream = 3 };
 
 void FillNormal(Rng& rng, std::vector<float>& out) {
   for (float& v : out) v = static_cast<float>(rng.Normal());
@@ -37,9 +38,10 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     : network_(network), train_(train) {
   CheckTrainingSetup(data, network, train);
   arch_ = BuildArchitecture(data.spec, network, train.method);
-  data_ = TrainingData::From(data, network.image_scale);
+  data_ = TrainingData::From(data, network.image_scale, network.action_chunk);
   scaling_ =
       train.standardize_targets ? TargetScaling::Fit(data_) : TargetScaling::Identity(data.spec);
+  if (train.standardize_inputs) scaling_.FitInputs(data_);
   scaling_.Apply(data_);
   const size_t n = static_cast<size_t>(arch_.num_params);
   params_.assign(n, 0.0f);
@@ -50,7 +52,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
   const int batch = train.batch_size;
   const DataSpec& s = data.spec;
   demo_.Resize(arch_, batch);
-  target_u_.assign(static_cast<size_t>(batch) * s.u_dim, 0.0f);
+  target_u_.assign(static_cast<size_t>(batch) * arch_.action_width(), 0.0f);
   noise_u_.assign(target_u_.size(), 0.0f);
   grad_policy_head_.assign(2 * target_u_.size(), 0.0f);
   if (arch_.has_beacon_net()) {
@@ -63,6 +65,10 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     target_play_.assign(target_b_.size(), 0.0f);
     noise_play_.assign(target_b_.size(), 0.0f);
     grad_play_head_.assign(grad_beacon_head_.size(), 0.0f);
+  }
+  if (train.random_shift_px > 0) {
+    shifted_demo_y_.assign(static_cast<size_t>(batch) * data_.y_size, 0.0f);
+    if (UsesPlay()) shifted_play_y_.assign(shifted_demo_y_.size(), 0.0f);
   }
   if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
   StartAttempt(0);
@@ -82,6 +88,7 @@ void TrainerImpl::StartAttempt(int attempt) {
   InitializeParameters(arch_, init, params_.data());
   batch_rng_.Seed(Rng::Derive(seed, kBatchStream));
   noise_rng_.Seed(Rng::Derive(seed, kNoiseStream));
+  augment_rng_.Seed(Rng::Derive(seed, kAugmentStream));
   std::fill(exp_avg_.begin(), exp_avg_.end(), 0.0f);
   std::fill(exp_avg_sq_.begin(), exp_avg_sq_.end(), 0.0f);
 }
@@ -92,7 +99,7 @@ void TrainerImpl::GatherBatch() {
   for (int i = 0; i < demo_.batch; ++i) {
     const int64_t row = static_cast<int64_t>(batch_rng_.UniformInt(data_.num_demo));
     CopyRow(data_.demo_x, row, s.x_dim, demo_.x.data() + i * s.x_dim);
-    CopyRow(data_.demo_u, row, s.u_dim, target_u_.data() + i * s.u_dim);
+    CopyRow(data_.demo_u, row, arch_.action_width(), target_u_.data() + i * arch_.action_width());
     if (beacons) CopyRow(data_.demo_b, row, s.b_dim, target_b_.data() + i * s.b_dim);
     demo_.y[i] = data_.DemoY(row);
   }
@@ -102,6 +109,23 @@ void TrainerImpl::GatherBatch() {
       CopyRow(data_.play_x, row, s.x_dim, play_.x.data() + i * s.x_dim);
       CopyRow(data_.play_b, row, s.b_dim, target_play_.data() + i * s.b_dim);
       play_.y[i] = data_.PlayY(row);
+    }
+  }
+  if (train_.random_shift_px > 0) {
+    const int channels = static_cast<int>(s.y_shape[0]), height = static_cast<int>(s.y_shape[1]),
+              width = static_cast<int>(s.y_shape[2]);
+    auto shift = [&](const float*& image, float* out) {
+      const Shift d = DrawShift(augment_rng_, train_.random_shift_px);
+      ShiftImage(image, channels, height, width, d.dy, d.dx, out);
+      image = out;
+    };
+    for (int i = 0; i < demo_.batch; ++i) {
+      shift(demo_.y[i], shifted_demo_y_.data() + i * data_.y_size);
+    }
+    if (UsesPlay()) {
+      for (int i = 0; i < play_.batch; ++i) {
+        shift(play_.y[i], shifted_play_y_.data() + i * data_.y_size);
+      }
     }
   }
   if (train_.loss == LossKind::kMseSample) {
@@ -117,9 +141,14 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
   const DataSpec& s = data_.spec;
   ForwardFeatures(arch_, params, demo_);
   ForwardPolicy(arch_, params, demo_);
-  m.action_loss =
-      HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(), batch, s.u_dim,
-               static_cast<float>(train_.action_weight), grad_policy_head_.data());
+  // With a chunk of k actions the head's loss sums k actions' terms: per action (divided by k)
+  // it weighs against the beacon term as a single action does.
+  const float chunk = static_cast<float>(network_.action_chunk);
+  m.action_loss = HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(),
+                           batch, arch_.action_width(),
+                           static_cast<float>(train_.action_weight) / chunk,
+                           grad_policy_head_.data()) /
+                  chunk;
   if (arch_.has_beacon_net()) {
     ForwardBeacon(arch_, params, demo_);
     m.beacon_loss =
@@ -161,6 +190,7 @@ void TrainerImpl::Step() {
   // Everything that can fail is done before the first write to the trainer's state, so that a
   // DivergenceError leaves weights, optimizer and generators as they were before the step.
   const Rng::State batch_before = batch_rng_.GetState(), noise_before = noise_rng_.GetState();
+  const Rng::State augment_before = augment_rng_.GetState();
   GatherBatch();
   StepMetrics m;
   m.attempt = attempt_;
@@ -180,6 +210,7 @@ void TrainerImpl::Step() {
   auto diverged = [&](const std::string& what) {
     batch_rng_.SetState(batch_before);
     noise_rng_.SetState(noise_before);
+    augment_rng_.SetState(augment_before);
     std::ostringstream msg;
     msg << "training diverged at step " << step_ << " (attempt " << attempt_ << "): " << what
         << " (action loss " << m.action_loss << ", beacon " << m.beacon_loss << ", play "
@@ -234,8 +265,9 @@ TrainingErrors TrainerImpl::Evaluate() {
     }
     ForwardFeatures(arch_, params, eval_);
     ForwardPolicy(arch_, params, eval_);
-    action_sum += SumSquaredMeanError(eval_.policy_head(), data_.demo_u.data() + begin * s.u_dim,
-                                      count, s.u_dim);
+    action_sum += SumSquaredMeanError(eval_.policy_head(),
+                                      data_.demo_u.data() + begin * arch_.action_width(), count,
+                                      arch_.action_width());
     if (arch_.has_beacon_net()) {
       ForwardBeacon(arch_, params, eval_);
       beacon_sum += SumSquaredMeanError(eval_.beacon_head(), data_.demo_b.data() + begin * s.b_dim,
@@ -257,7 +289,7 @@ TrainingErrors TrainerImpl::Evaluate() {
     }
   }
   TrainingErrors e;
-  e.action = action_sum / static_cast<double>(data_.num_demo * s.u_dim);
+  e.action = action_sum / static_cast<double>(data_.num_demo * arch_.action_width());
   if (arch_.has_beacon_net()) {
     e.beacon_and_play = beacon_sum / static_cast<double>(data_.num_demo * s.b_dim);
     if (UsesPlay()) e.beacon_and_play += play_sum / static_cast<double>(data_.num_play * s.b_dim);
@@ -308,6 +340,7 @@ TrainerState TrainerImpl::State() const {
   s.adam_step = adam_step_;
   s.batch_rng = batch_rng_.GetState();
   s.noise_rng = noise_rng_.GetState();
+  s.augment_rng = augment_rng_.GetState();
   s.last = last_;
   s.params.assign(params_.begin(), params_.end());
   s.exp_avg.assign(exp_avg_.begin(), exp_avg_.end());
@@ -332,6 +365,7 @@ void TrainerImpl::SetState(const TrainerState& s) {
   adam_step_ = s.adam_step;
   batch_rng_.SetState(s.batch_rng);
   noise_rng_.SetState(s.noise_rng);
+  augment_rng_.SetState(s.augment_rng);
   last_ = s.last;
   params_.assign(s.params.begin(), s.params.end());
   exp_avg_.assign(s.exp_avg.begin(), s.exp_avg.end());

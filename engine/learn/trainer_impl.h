@@ -27,6 +27,7 @@ struct TrainerState {
   int64_t adam_step = 0;
   Rng::State batch_rng{};
   Rng::State noise_rng{};
+  Rng::State augment_rng{};  ///< image shifts (TrainConfig::random_shift_px)
   StepMetrics last;
   std::vector<float> params, exp_avg, exp_avg_sq;
 };
@@ -89,6 +90,7 @@ class TrainerImpl {
   int64_t adam_step_ = 0;
   Rng batch_rng_{0};
   Rng noise_rng_{0};
+  Rng augment_rng_{0};
   StepMetrics last_;
   AlignedFloats params_, grads_, exp_avg_, exp_avg_sq_;
 
@@ -97,6 +99,7 @@ class TrainerImpl {
   std::vector<float> target_u_, target_b_, target_play_;
   std::vector<float> noise_u_, noise_b_, noise_play_;
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
+  AlignedFloats shifted_demo_y_, shifted_play_y_;  ///< the batch's augmented images
   std::unique_ptr<TorchStep> torch_;  ///< Backend::kTorch only
 };
 

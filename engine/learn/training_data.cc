@@ -1,5 +1,7 @@
 #include "engine/learn/training_data.h"
 
+#include <algorithm>
+
 namespace recon::learn {
 
 namespace {
@@ -15,8 +17,9 @@ void Append(Buffer& out, const std::vector<float>& values, float scale = 1.0f) {
 
 }  // namespace
 
-TrainingData TrainingData::From(const Dataset& dataset, float image_scale) {
+TrainingData TrainingData::From(const Dataset& dataset, float image_scale, int action_chunk) {
   TrainingData t;
+  t.action_chunk = action_chunk;
   t.spec = dataset.spec;
   t.y_size = dataset.spec.YSize();
   t.num_demo = dataset.NumDemoSamples();
@@ -25,13 +28,17 @@ TrainingData TrainingData::From(const Dataset& dataset, float image_scale) {
   t.demo_x.reserve(t.num_demo * t.spec.x_dim);
   t.demo_y.reserve(t.num_demo * t.y_size);
   t.demo_b.reserve(t.num_demo * t.spec.b_dim);
-  t.demo_u.reserve(t.num_demo * t.spec.u_dim);
+  t.demo_u.reserve(t.num_demo * t.spec.u_dim * action_chunk);
   for (const Episode& episode : dataset.demos) {
-    for (const Sample& s : episode.samples) {
+    const size_t length = episode.samples.size();
+    for (size_t i = 0; i < length; ++i) {
+      const Sample& s = episode.samples[i];
       Append(t.demo_x, s.x);
       Append(t.demo_y, s.y, scale);
       Append(t.demo_b, s.b);
-      Append(t.demo_u, s.u);
+      for (int k = 0; k < action_chunk; ++k) {
+        Append(t.demo_u, episode.samples[std::min(i + k, length - 1)].u);
+      }
     }
   }
   t.play_x.reserve(t.num_play * t.spec.x_dim);

@@ -17,11 +17,14 @@ struct TrainingData {
   DataSpec spec;
   int64_t num_demo = 0, num_play = 0;
   int64_t y_size = 0;
-  std::vector<float> demo_x, demo_b, demo_u, play_x, play_b;
+  int action_chunk = 1;
+  std::vector<float> demo_x, demo_b, demo_u, play_x, play_b;  ///< demo_u: u_dim * action_chunk
   AlignedFloats demo_y, play_y;
   uint64_t fingerprint = 0;  ///< Fingerprint() of the source dataset
 
-  static TrainingData From(const Dataset& dataset, float image_scale);
+  /// `action_chunk` > 1 stores each demonstration row's target as the next action_chunk actions
+  /// of its episode (u_t .. u_{t+k-1}, the last one repeated past the episode's end).
+  static TrainingData From(const Dataset& dataset, float image_scale, int action_chunk = 1);
 
   const float* DemoY(int64_t i) const { return demo_y.data() + i * y_size; }
   const float* PlayY(int64_t i) const { return play_y.data() + i * y_size; }

@@ -1,5 +1,6 @@
 #include "engine/store/manifest.h"
 
+#include <cmath>
 #include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -54,6 +55,9 @@ class FieldReader {
     const json& value = Required(key);
     if (!value.is_number()) Fail(Name(key), "must be a number");
     return value.get<double>();
+  }
+  double OptionalNumber(const std::string& key, double fallback) const {
+    return object_.contains(key) ? Number(key) : fallback;
   }
   bool Boolean(const std::string& key, bool fallback) const {
     if (!object_.contains(key)) return fallback;
@@ -135,7 +139,9 @@ std::string ManifestToJson(const SessionManifest& m) {
                       {{"world", m.world},
                        {"kind", m.cell},
                        {"placement", m.placement},
+                       {"layout", m.layout},
                        {"beacon_noise_sigma", m.beacon_noise_sigma},
+                       {"demo_noise_sigma", m.demo_noise_sigma},
                        {"image_size", m.image_size},
                        {"step_seconds", m.step_seconds},
                        {"devices", devices}}},
@@ -178,7 +184,13 @@ SessionManifest ManifestFromJson(const std::string& text, const std::string& sou
   m.world = cell.String("world");
   m.cell = cell.String("kind");
   m.placement = cell.String("placement");
+  // Tabletop sessions written before layouts existed were recorded in what is now "wide".
+  m.layout = cell.OptionalString("layout", m.world == "tabletop" ? "wide" : "");
   m.beacon_noise_sigma = cell.Number("beacon_noise_sigma");
+  m.demo_noise_sigma = cell.OptionalNumber("demo_noise_sigma", 0.0);
+  if (!std::isfinite(m.demo_noise_sigma) || m.demo_noise_sigma < 0) {
+    cell.Fail(cell.Name("demo_noise_sigma"), "must be a non-negative number");
+  }
   m.image_size = static_cast<int>(cell.NonNegativeInteger("image_size"));
   m.step_seconds = cell.Number("step_seconds");
   const json& devices = cell.Array("devices");

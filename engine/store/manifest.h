@@ -43,7 +43,12 @@ struct SessionManifest {
   std::string world;               ///< "tabletop", "bintransfer", "dynamic2d", "static2d", ...
   std::string cell = "simulated";  ///< "simulated" or "real"
   std::string placement;           ///< the world's beacon placement while teaching
+  /// The world's scene layout ("paper" or "wide" for tabletop; empty for worlds without layouts).
+  std::string layout;
   double beacon_noise_sigma = 0;
+  /// Noise injected into the executed arm motion while demonstrating (worlds::DemoNoise), in the
+  /// action's units; 0 = off. The teacher's commands are the labels either way.
+  double demo_noise_sigma = 0;
   int image_size = 0;       ///< camera images are image_size x image_size (0: none)
   double step_seconds = 0;  ///< control period of a demonstration step
   std::vector<DeviceEntry> devices;

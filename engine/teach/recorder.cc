@@ -1,19 +1,55 @@
 #include "engine/teach/recorder.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 #include "engine/teach/play_recorder.h"
 
 namespace recon::teach {
+
+namespace {
+// The stream of a take's injected action noise (Rng::Derive of its scenario seed).
+constexpr uint64_t kNoiseStream = 0xDA27;
+}  // namespace
+
+void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64_t session_seed,
+                      int number) {
+  const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, false);
+  const int n = world.DemosPerConfiguration();
+  if (n <= 1) {
+    recorder.Start(seed);
+    return;
+  }
+  const int configuration = number / n;
+  recorder.StartTake(seed, store::Session::ScenarioSeed(session_seed, configuration * n, false),
+                     configuration);
+}
 
 TeacherAction ScriptedTeacher(const worlds::World& world) { return {world.ExpertAction(), false}; }
 
 DemoRecorder::DemoRecorder(worlds::World& world, Teacher teacher, std::string source)
     : world_(world), teacher_(std::move(teacher)), source_(std::move(source)) {}
 
-void DemoRecorder::Start(uint64_t seed) {
-  world_.Reset(seed);
+void DemoRecorder::Start(uint64_t seed) { StartTake(seed, seed, -1); }
+
+void DemoRecorder::SetActionNoise(double sigma) {
+  if (!std::isfinite(sigma) || sigma < 0) {
+    throw UserError("demonstration noise must be a non-negative number (got " +
+                    FormatNumber(sigma) + ")");
+  }
+  noise_sigma_ = sigma;
+}
+
+void DemoRecorder::StartTake(uint64_t seed, uint64_t configuration_seed, int configuration) {
+  if (configuration < 0) {
+    world_.Reset(seed);
+  } else {
+    world_.ResetTake(seed, configuration_seed, configuration);
+  }
+  noise_rng_.Seed(Rng::Derive(seed, kNoiseStream));
   record_ = {};
   record_.meta.kind = "demo";
   record_.meta.seed = seed;
@@ -32,7 +68,7 @@ bool DemoRecorder::Tick() {
   sample.b = world_.BeaconReading();
   TeacherAction action = teacher_(world_);
   sample.u = std::move(action.u);
-  world_.Step(sample.u);
+  world_.Step(worlds::PerturbAction(world_, sample.u, noise_sigma_, noise_rng_));
   record_.episode.samples.push_back(std::move(sample));
   // robomimic's sparse reward: 1 once the task is done.
   record_.rewards.push_back(world_.TaskSucceeded() ? 1.0 : 0.0);
@@ -66,8 +102,9 @@ void RecordEpisodes(store::Session& session, worlds::World& world, const RecordP
                     const std::function<bool()>& cancelled) {
   RecordProgress progress;
   DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
+  recorder.SetActionNoise(session.manifest().demo_noise_sigma);
   for (int i = 0; i < plan.demos && !cancelled(); ++i) {
-    recorder.Start(store::Session::ScenarioSeed(plan.seed, session.NextDemoNumber(), false));
+    StartSessionDemo(recorder, world, plan.seed, session.NextDemoNumber());
     while (recorder.Tick()) {
     }
     const store::EpisodeEntry& entry = session.CommitDemo(recorder.Take());
@@ -125,7 +162,14 @@ const store::EpisodeEntry& ReRecordDemo(store::Session& session, worlds::World& 
                     old.problem + ")");
   }
   DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
-  recorder.Start(old.meta.seed);
+  recorder.SetActionNoise(session.manifest().demo_noise_sigma);
+  const int number = std::atoi(old.name.c_str() + 5);
+  if (world.DemosPerConfiguration() > 1 &&
+      store::Session::ScenarioSeed(session.manifest().seed, number, false) == old.meta.seed) {
+    StartSessionDemo(recorder, world, session.manifest().seed, number);
+  } else {
+    recorder.Start(old.meta.seed);  // a take recorded from another seed: its own scenario
+  }
   while (recorder.Tick()) {
   }
   return session.CommitDemo(recorder.Take(), name);

@@ -35,6 +35,13 @@ class DemoRecorder {
 
   /// Resets the world to scenario `seed` and starts a new recording.
   void Start(uint64_t seed);
+  /// Starts take `seed` of scene configuration `configuration`, whose scene comes from
+  /// `configuration_seed` (World::ResetTake).
+  void StartTake(uint64_t seed, uint64_t configuration_seed, int configuration);
+  /// Noise injected into the executed actions from the next Start on (worlds::DemoNoise; 0 =
+  /// off, the default). The stored actions stay the teacher's. UserError if negative or not
+  /// finite.
+  void SetActionNoise(double sigma);
   /// Records one step. Returns false once the recording is over (the teacher finished or the
   /// world's episode length was reached).
   bool Tick();
@@ -53,7 +60,16 @@ class DemoRecorder {
   std::string source_;
   store::DemoRecord record_;
   bool recording_ = false;
+  double noise_sigma_ = 0.0;
+  Rng noise_rng_{0};
 };
+
+/// Starts demonstration number `number` of a session whose scenario seeds derive from
+/// `session_seed`: its scenario seed is Session::ScenarioSeed(session_seed, number), and in worlds
+/// with several demonstrations per configuration it is take number % n of configuration
+/// number / n, whose scene is that of the configuration's first demonstration.
+void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64_t session_seed,
+                      int number);
 
 /// Draws one scenario's worth of play data (World::PlaySamplesPerScenario samples, or `count`
 /// if positive) from scenario `seed`.
@@ -74,7 +90,8 @@ struct RecordProgress {
 };
 
 /// Records plan.demos demonstrations and plan.play_samples play samples into `session`, each
-/// committed atomically as soon as it is recorded. Stops between episodes when *cancel becomes
+/// committed atomically as soon as it is recorded, with the session's demonstration noise
+/// (SessionManifest::demo_noise_sigma). Stops between episodes when *cancel becomes
 /// true (what is committed stays). The world must have the session's shapes.
 void RecordIntoSession(store::Session& session, worlds::World& world, const RecordPlan& plan,
                        const std::function<void(const RecordProgress&)>& on_commit = {},

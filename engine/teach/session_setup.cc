@@ -8,7 +8,7 @@ namespace recon::teach {
 
 std::string DefaultTeachingPlacement(const std::string& world) {
   if (world == "dynamic2d" || world == "dynamic2d-state") return "exact";
-  if (world == "tabletop") return "plate";
+  if (world == "tabletop" || world == "tabletop-state") return "plate";
   worlds::WorldPlacements(world);  // UserError for an unknown world
   return "position";
 }
@@ -20,7 +20,9 @@ store::SessionManifest NewSessionManifest(const SessionSetup& setup, const world
   m.world = setup.world_name;
   m.cell = "simulated";
   m.placement = setup.placement;
+  m.layout = setup.layout;
   m.beacon_noise_sigma = setup.beacon_noise_sigma;
+  m.demo_noise_sigma = setup.demo_noise_sigma;
   m.image_size = worlds::WorldNeedsRenderer(setup.world_name) ? setup.image_size : 0;
   m.step_seconds = world.StepSeconds();
   m.beacons = worlds::BeaconLayout(setup.world_name, setup.placement);
@@ -56,6 +58,7 @@ void CheckSessionMatches(const store::SessionManifest& manifest, const SessionSe
   if (manifest.placement != setup.placement) {
     mismatch("placement", manifest.placement, setup.placement);
   }
+  if (manifest.layout != setup.layout) mismatch("layout", manifest.layout, setup.layout);
   if (manifest.image_size > 0 && manifest.image_size != setup.image_size) {
     mismatch("image size", std::to_string(manifest.image_size), std::to_string(setup.image_size));
   }

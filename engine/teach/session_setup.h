@@ -17,14 +17,16 @@ std::string DefaultTeachingPlacement(const std::string& world);
 struct SessionSetup {
   std::string world_name;
   std::string placement;
+  std::string layout;  ///< the world's scene layout (empty for worlds without layouts)
   double beacon_noise_sigma = 0;
-  int image_size = 0;  ///< 0 for worlds without a camera
+  double demo_noise_sigma = 0;  ///< DART noise while demonstrating (worlds::DemoNoise)
+  int image_size = 0;           ///< 0 for worlds without a camera
   uint64_t seed = 1;
 };
 store::SessionManifest NewSessionManifest(const SessionSetup& setup, const worlds::World& world);
 
 /// UserError when `setup` does not match an existing session's manifest (another world,
-/// placement or image size), naming the field and both values.
+/// placement, layout or image size), naming the field and both values.
 void CheckSessionMatches(const store::SessionManifest& manifest, const SessionSetup& setup);
 
 }  // namespace recon::teach

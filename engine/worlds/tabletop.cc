@@ -17,13 +17,19 @@ namespace recon::worlds {
 namespace {
 
 constexpr char kCamera[] = "top";
-// Scenario layout, table frame (metres). The plate is at the left or the right edge.
+// Scenario layout, table frame (metres). The plate is at the left or the right edge: in the
+// paper's layout at one marked place per side (a person puts it there to within about 1 cm), in
+// the wide layout anywhere in a band along the edge.
+constexpr double kPaperPlateX = 0.56, kPaperPlateAbsY = 0.33, kPaperPlateJitter_m = 0.01;
 constexpr double kPlateMinX = 0.45, kPlateMaxX = 0.68;
 constexpr double kPlateMinAbsY = 0.30, kPlateMaxAbsY = 0.36;
+// The paper's robot experiment records two takes of every plate-and-bowl configuration.
+constexpr int kPaperDemosPerConfiguration = 2;
 // The toast waits at a fixed pick-up place (the paper does not say; a toaster or a plate of toast
 // by the robot): at 64 x 64 pixels a 2 cm shift is one pixel, too little to steer a grasp by.
 constexpr double kToastX = 0.33, kToastJitter = 0.0;
-constexpr double kToastRestZ = 0.009;
+// A slice of toast: 10 x 10 x 1.6 cm (assets/mjcf/tabletop.xml).
+constexpr double kToastRestZ = 0.008;
 constexpr double kBowlMinX = 0.22, kBowlMaxX = 0.82, kBowlMaxAbsY = 0.5;
 constexpr double kBowlClearPlate = 0.22, kBowlClearToast = 0.16, kBowlClearBeacon = 0.12;
 // The expert: waypoints above the toast and the plate, joint steps toward their IK solutions.
@@ -35,7 +41,9 @@ constexpr double kRetreatHeight_m = 0.25;
 constexpr double kRetreatTolerance_m = 0.03;
 constexpr double kAlignTolerance_m = 0.012;
 constexpr double kDescentTolerance_m = 0.03;
-constexpr double kGraspTolerance_m = 0.015;
+// The expert closes when the tips are this close to the toast's centre, well inside the window a
+// parallel gripper holds a thin slice in (tips at most 3 mm above its centre, Ur5Arm).
+constexpr double kGraspTolerance_m = 0.004;
 constexpr double kReleaseTolerance_m = 0.02;
 constexpr double kExpertGain_per_s = 2.5;
 // A teleoperating person is slower than a script: at 0.3 rad/s a demonstration takes about
@@ -49,6 +57,11 @@ double PlanarDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 }  // namespace
 
+const std::vector<std::string>& Tabletop::Layouts() {
+  static const std::vector<std::string> layouts = {"paper", "wide"};
+  return layouts;
+}
+
 const std::vector<std::string>& Tabletop::Placements() {
   static const std::vector<std::string> placements = {"none", "plate"};
   return placements;
@@ -61,13 +74,26 @@ Tabletop::Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer
     throw UserError("unknown tabletop beacon placement '" + options_.placement +
                     "' (valid: " + JoinNames(placements) + ")");
   }
-  if (!std::isfinite(options_.noise_sigma_m) || options_.noise_sigma_m < 0) {
-    throw UserError("beacon noise must be a non-negative number of metres");
+  const auto& layouts = Layouts();
+  if (std::find(layouts.begin(), layouts.end(), options_.layout) == layouts.end()) {
+    throw UserError("unknown tabletop layout '" + options_.layout +
+                    "' (valid: " + JoinNames(layouts) + ")");
+  }
+  if (!std::isfinite(options_.noise_sigma_m) || options_.noise_sigma_m < 0 ||
+      options_.noise_sigma_m > kMaxBeaconNoise_m) {
+    throw UserError("beacon noise must be between 0 and " + FormatNumber(kMaxBeaconNoise_m) +
+                    " metres (got " + FormatNumber(options_.noise_sigma_m) + ")");
   }
   if (options_.image_width < 16 || options_.image_height < 16) {
     throw UserError("tabletop camera images must be at least 16 x 16 pixels");
   }
-  if (renderer_ == nullptr) throw UserError("the tabletop world needs a scene renderer");
+  if (options_.observation != "image" && options_.observation != "state") {
+    throw UserError("unknown tabletop observation '" + options_.observation +
+                    "' (valid: image, state)");
+  }
+  if (renderer_ == nullptr && options_.observation == "image") {
+    throw UserError("the tabletop world needs a scene renderer");
+  }
   PaintTagTextures(scene_);
   arm_ = std::make_unique<Ur5Arm>(scene_);
   const mjModel* m = scene_.model();
@@ -82,7 +108,9 @@ Tabletop::Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer
 DataSpec Tabletop::Spec() const {
   DataSpec spec;
   spec.x_dim = Ur5Arm::kJoints + 1;
-  spec.y_shape = {3, options_.image_height, options_.image_width};
+  spec.y_shape = options_.observation == "state"
+                     ? std::vector<int64_t>{6}
+                     : std::vector<int64_t>{3, options_.image_height, options_.image_width};
   spec.b_dim = options_.placement == "none" ? 0 : 2;
   spec.u_dim = Ur5Arm::kJoints + 1;
   return spec;
@@ -108,15 +136,50 @@ Eigen::Vector3d Tabletop::DrawBowlPosition(Rng& rng) const {
   throw std::logic_error("tabletop: no free place for the bowl (layout constants are wrong)");
 }
 
+Eigen::Vector3d Tabletop::DrawPlatePosition(int side, Rng& rng) const {
+  if (options_.layout == "paper") {
+    return {kPaperPlateX + rng.Uniform(-kPaperPlateJitter_m, kPaperPlateJitter_m),
+            side * kPaperPlateAbsY + rng.Uniform(-kPaperPlateJitter_m, kPaperPlateJitter_m), 0.0};
+  }
+  return {rng.Uniform(kPlateMinX, kPlateMaxX), side * rng.Uniform(kPlateMinAbsY, kPlateMaxAbsY),
+          0.0};
+}
+
 void Tabletop::Reset(uint64_t seed) {
   rng_.Seed(seed);
   mj_resetData(scene_.model(), scene_.data());
   plate_side_ = rng_.Uniform() < 0.5 ? 1 : -1;
-  PlaceMocap(plate_body_, {rng_.Uniform(kPlateMinX, kPlateMaxX),
-                           plate_side_ * rng_.Uniform(kPlateMinAbsY, kPlateMaxAbsY), 0.0});
+  PlaceMocap(plate_body_, DrawPlatePosition(plate_side_, rng_));
   PlaceToastAndArm();  // runs mj_forward: the bowl below keeps clear of the current positions
   PlaceMocap(bowl_body_, DrawBowlPosition(rng_));
   FinishReset();
+}
+
+int Tabletop::DemosPerConfiguration() const {
+  return options_.layout == "paper" ? kPaperDemosPerConfiguration : 1;
+}
+
+void Tabletop::ResetTake(uint64_t seed, uint64_t configuration_seed, int configuration) {
+  if (options_.layout != "paper") {
+    Reset(seed);
+    return;
+  }
+  // The scene comes from the configuration: its plate side alternates (left, right, left, ...)
+  // so that 4 demonstrations show both sides, as the paper's 2 + 2 did; its bowl is anywhere.
+  Rng scene_rng(configuration_seed);
+  mj_resetData(scene_.model(), scene_.data());
+  plate_side_ = configuration % 2 == 0 ? 1 : -1;
+  PlaceMocap(plate_body_, DrawPlatePosition(plate_side_, scene_rng));
+  rng_.Seed(seed);  // the take's own beacon noise and play data
+  PlaceToastAndArm();
+  PlaceMocap(bowl_body_, DrawBowlPosition(scene_rng));
+  FinishReset();
+}
+
+std::vector<float> Tabletop::ActionNoiseScale() const {
+  std::vector<float> scale(Ur5Arm::kJoints + 1, 1.0f);
+  scale[Ur5Arm::kJoints] = 0.0f;  // the gripper command stays the teacher's
+  return scale;
 }
 
 void Tabletop::ResetToLayout(uint64_t seed, const Eigen::Vector3d& plate,
@@ -164,6 +227,7 @@ void Tabletop::CheckReachable() const {
 }
 
 void Tabletop::Render() {
+  if (renderer_ == nullptr) return;  // the "state" observation draws nothing
   image_ = renderer_->Render(scene_, kCamera, options_.image_width, options_.image_height);
 }
 
@@ -189,7 +253,14 @@ Observation Tabletop::Observe() const {
     o.x.push_back(static_cast<float>(q[i] - Ur5Arm::kHome[i]));
   }
   o.x.push_back(static_cast<float>(arm_->GripperOpening()));
-  o.y = ImageAsY();
+  if (options_.observation == "state") {
+    for (const Eigen::Vector3d& p : {ToastPosition(), PlatePosition(), BowlPosition()}) {
+      o.y.push_back(static_cast<float>(p.x()));
+      o.y.push_back(static_cast<float>(p.y()));
+    }
+  } else {
+    o.y = ImageAsY();
+  }
   return o;
 }
 

@@ -20,9 +20,17 @@ struct TabletopOptions {
   /// "none" (the Baseline, d = 0) or "plate" (the beacon beside the plate: its x, y on the table
   /// in metres, d = 2).
   std::string placement = "plate";
+  /// "paper": the plate at one of two marked places (left or right edge), the bowl anywhere
+  /// else, demonstrations two per configuration (the paper's protocol). "wide": the plate
+  /// anywhere in a band along either edge, one demonstration per scenario (harder).
+  std::string layout = "paper";
   /// Standard deviation of Gaussian noise on each beacon coordinate, metres. A DWM1001 is good to
-  /// about 10 cm (REFERENCE.md section 4).
+  /// about 10 cm (REFERENCE.md section 4); kDwm1001NoiseSigma_m is what the simulated one has.
   double noise_sigma_m = 0.0;
+  /// "image" (the camera, the paper's y) or "state": y is the true table positions of the toast,
+  /// the plate and the bowl (x, y of each, metres): the privileged diagnostic that separates what
+  /// a learner loses to vision from what it loses to control. No renderer is needed for "state".
+  std::string observation = "image";
   /// Camera image size; the paper's policy saw small images, 64 x 64 by default.
   int image_width = 64;
   int image_height = 64;
@@ -46,14 +54,29 @@ class Tabletop : public World {
   /// demonstration scenario.
   static constexpr int kPlayPerScenario = 10;
   static constexpr double kPlateRadius_m = 0.09;
+  /// Per-axis position noise of a DWM1001's location engine, as the simulated one has it
+  /// (devices/uwb/simulated_dwm1001.h) and the cell's calibration measures it: the default beacon
+  /// noise of a simulated tabletop session or experiment.
+  static constexpr double kDwm1001NoiseSigma_m = 0.07;
+  /// More than this is no beacon at all (the table is 1 m across).
+  static constexpr double kMaxBeaconNoise_m = 0.5;
 
   /// Throws UserError for an unknown placement, bad noise or image size, or a null renderer.
   Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer> renderer);
 
-  std::string Name() const override { return "tabletop"; }
+  std::string Name() const override {
+    return options_.observation == "state" ? "tabletop-state" : "tabletop";
+  }
   DataSpec Spec() const override;
   int EpisodeLength() const override { return kEpisodeLength; }
   void Reset(uint64_t seed) override;
+  /// 2 in the paper layout, 1 in the wide one.
+  int DemosPerConfiguration() const override;
+  /// Paper layout: configuration c has the plate on the left (c even) or the right (c odd) at
+  /// its marked place, and the bowl where `configuration_seed` puts it.
+  void ResetTake(uint64_t seed, uint64_t configuration_seed, int configuration) override;
+  /// The six joint velocities may be perturbed while recording, the gripper command not.
+  std::vector<float> ActionNoiseScale() const override;
   Observation Observe() const override;
   void Step(const std::vector<float>& u) override;
   std::vector<float> ExpertAction() const override;
@@ -84,6 +107,8 @@ class Tabletop : public World {
   int ReplayStateSize() const;
 
   static const std::vector<std::string>& Placements();
+  static const std::vector<std::string>& Layouts();
+  const std::string& layout() const { return options_.layout; }
 
   /// Like Reset(seed) but with the plate and the bowl where given (table frame, metres), for
   /// tests and tools; the seed still drives beacon noise and play data. UserError if the layout
@@ -109,6 +134,8 @@ class Tabletop : public World {
  private:
   void PlaceMocap(int body, const Eigen::Vector3d& position);
   Eigen::Vector3d DrawBowlPosition(Rng& rng) const;
+  /// The plate's place on side `side` (+1 left, -1 right) under the configured layout.
+  Eigen::Vector3d DrawPlatePosition(int side, Rng& rng) const;
   /// The toast at its pick-up place and the arm at home (drawn from rng_ after the plate).
   void PlaceToastAndArm();
   /// After the plate and bowl are placed: positions, the reachability check, the first frame.

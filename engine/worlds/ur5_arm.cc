@@ -24,8 +24,18 @@ constexpr double kFingerOpen_m = 0.06;
 // Fingers sit 12 mm either side of the grip point and are 8 mm thick (half): a finger at slide
 // position s touches an object of half-width w when 0.012 + s - 0.008 = w.
 constexpr double kFingerInnerOffset_m = 0.004;
-// An object is "between the fingers" when its centre is this close to the grip point.
-constexpr double kGraspReach_m = 0.03;
+// Where a closing gripper holds an object (GraspOffset). The fingers' inner faces are 64 mm from
+// the grip point when open (12 mm offset + 60 mm stroke - 8 mm half-thickness); a finger is 20 mm
+// wide and its pad runs 60 mm back from the tip; the pads must grip at least 5 mm of the object.
+constexpr double kFingerInnerHalfOpening_m = 0.064;
+constexpr double kFingerHalfWidth_m = 0.01;
+constexpr double kFingerPadLength_m = 0.06;
+constexpr double kMinPadOverlap_m = 0.005;
+// The fingers take this long to close: an object that comes into the window meanwhile (the arm
+// still settling as the gripper shuts) is caught; after it, fingers closed on nothing stay so.
+constexpr double kFingerClosingTime_s = 0.3;
+// Nothing whose centre is farther than this from the grip point is grasped.
+constexpr double kGraspReach_m = 0.08;
 // The servo's set-point never runs further than this ahead of the joint (a blocked joint must
 // not wind up a huge correction).
 constexpr double kMaxSetpointLead_rad = 0.2;
@@ -85,6 +95,7 @@ void Ur5Arm::Reset(const Ur5Joints& q) {
   command_ = {};
   setpoint_ = q;
   gripper_closed_ = false;
+  closing_left_s_ = 0.0;
   held_object_ = -1;
   mj_forward(m, d);
 }
@@ -129,24 +140,68 @@ void Ur5Arm::CommandJointVelocities(const Ur5Joints& qd) {
 void Ur5Arm::CommandGripper(bool close) {
   if (close == gripper_closed_) return;
   gripper_closed_ = close;
+  closing_left_s_ = close ? kFingerClosingTime_s : 0.0;
   UpdateGrasp();
 }
 
 int Ur5Arm::FindGraspable() const {
   const mjModel* m = scene_->model();
-  const mjData* d = scene_->data();
-  const Eigen::Vector3d grip = GripPosition();
   int best = -1;
   double best_distance = kGraspReach_m;
   for (int e : grasp_welds_) {
-    const mjtNum* p = d->xpos + 3 * m->eq_obj2id[e];
-    const double distance = (Eigen::Vector3d(p[0], p[1], p[2]) - grip).norm();
-    if (distance < best_distance) {
-      best_distance = distance;
+    const int object = m->eq_obj2id[e];
+    const std::optional<double> distance = GraspOffset(object);
+    if (distance && *distance < best_distance) {
+      best_distance = *distance;
       best = e;
     }
   }
   return best;
+}
+
+std::optional<double> Ur5Arm::GraspOffset(int object) const {
+  const mjModel* m = scene_->model();
+  const mjData* d = scene_->data();
+  // The gripper's axes in the world: x closes the fingers, y runs along their faces, z points out
+  // of the tool (down, toward the table, when it points down).
+  const mjtNum* rg = d->site_xmat + 9 * grip_site_;
+  const Eigen::Vector3d axis[3] = {{rg[0], rg[3], rg[6]}, {rg[1], rg[4], rg[7]},
+                                   {rg[2], rg[5], rg[8]}};
+  const mjtNum* p = d->xpos + 3 * object;
+  const Eigen::Vector3d offset = Eigen::Vector3d(p[0], p[1], p[2]) - GripPosition();
+  // The object's half-extent along each gripper axis: the support of its boxes (or spheres and
+  // cylinders, by their radius) in that direction.
+  double half[3] = {0, 0, 0};
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] != object) continue;
+    const mjtNum* size = m->geom_size + 3 * g;
+    const mjtNum* ro = d->geom_xmat + 9 * g;
+    for (int a = 0; a < 3; ++a) {
+      double extent = 0;
+      if (m->geom_type[g] == mjGEOM_BOX) {
+        for (int k = 0; k < 3; ++k) {
+          const Eigen::Vector3d column(ro[k], ro[3 + k], ro[6 + k]);
+          extent += std::abs(axis[a].dot(column)) * size[k];
+        }
+      } else {
+        extent = size[0];
+      }
+      half[a] = std::max(half[a], extent);
+    }
+  }
+  const double along_closing = axis[0].dot(offset), along_faces = axis[1].dot(offset);
+  const double along_tool = axis[2].dot(offset);
+  // A parallel gripper centres what it closes on, as long as it starts between the open fingers.
+  if (std::abs(along_closing) > kFingerInnerHalfOpening_m - half[0]) return std::nullopt;
+  // The finger pads must land on it, not beside it.
+  if (std::abs(along_faces) > half[1] - kFingerHalfWidth_m) return std::nullopt;
+  // The pads reach from the tips (the grip point) kFingerPadLength_m back toward the flange
+  // (-z): the object's extent along z must overlap them by kMinPadOverlap_m (a thin slice is
+  // only held when the tips come down close to the table).
+  const double overlap = std::min(0.0, along_tool + half[2]) -
+                         std::max(-kFingerPadLength_m, along_tool - half[2]);
+  if (overlap < std::min(kMinPadOverlap_m, 2 * half[2])) return std::nullopt;
+  return offset.norm();
 }
 
 void Ur5Arm::UpdateGrasp() {
@@ -204,6 +259,10 @@ void Ur5Arm::Step(double duration_s) {
     const double finger = gripper_closed_ ? finger_closed_target_ : kFingerOpen_m;
     for (int a : finger_actuator_) d->ctrl[a] = finger;
     mj_step(m, d);
+    if (closing_left_s_ > 0) {
+      closing_left_s_ -= m->opt.timestep;
+      if (held_object_ < 0) UpdateGrasp();
+    }
   }
 }
 

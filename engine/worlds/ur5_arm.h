@@ -73,6 +73,9 @@ class Ur5Arm {
  private:
   void UpdateGrasp();
   int FindGraspable() const;
+  /// The distance from the grip point to `object`'s centre if closing the fingers now would hold
+  /// it (a real parallel gripper's window, see ur5_arm.cc), nullopt otherwise.
+  std::optional<double> GraspOffset(int object) const;
 
   struct ScratchDeleter {
     void operator()(mjData_* d) const;
@@ -87,6 +90,7 @@ class Ur5Arm {
   std::vector<int> grasp_welds_;  // equality ids
   Ur5Joints command_{}, setpoint_{};
   bool gripper_closed_ = false;
+  double closing_left_s_ = 0.0;  ///< the fingers are still closing this much longer
   int held_object_ = -1;
   double finger_closed_target_ = 0.0;
 };

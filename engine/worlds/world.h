@@ -9,6 +9,7 @@
 
 #include "engine/core/dataset.h"
 #include "engine/core/error.h"
+#include "engine/core/rng.h"
 
 namespace recon::worlds {
 
@@ -37,6 +38,24 @@ class World {
 
   /// Starts a new scenario drawn from `seed`.
   virtual void Reset(uint64_t seed) = 0;
+  /// How many demonstrations a teacher records per scene configuration. The paper's robot
+  /// experiment records 2 takes of each plate-and-bowl configuration (4 demonstrations = 2
+  /// configurations); 1 (the default) makes every demonstration a scenario of its own.
+  virtual int DemosPerConfiguration() const { return 1; }
+  /// Starts a demonstration take: the scene of configuration number `configuration` (0, 1, ...),
+  /// drawn from `configuration_seed` (the scenario seed of the configuration's first take), with
+  /// the take's own randomness (beacon noise, play data) from `seed`. Takes of one configuration
+  /// share the scene and differ in everything else. The default is Reset(seed), which is right
+  /// for worlds with one demonstration per configuration.
+  virtual void ResetTake(uint64_t seed, uint64_t configuration_seed, int configuration) {
+    (void)configuration_seed;
+    (void)configuration;
+    Reset(seed);
+  }
+  /// Per action dimension, how strongly a recording may perturb the executed action when noise
+  /// injection is on (DART): 1 for a joint velocity, 0 for a gripper command that must not
+  /// flicker. Empty (the default): the world's actions are never perturbed.
+  virtual std::vector<float> ActionNoiseScale() const { return {}; }
   virtual Observation Observe() const = 0;
   /// Applies action u (size Spec().u_dim) and advances the world one step.
   virtual void Step(const std::vector<float>& u) = 0;
@@ -93,12 +112,37 @@ class World {
   }
 };
 
-/// Records one demonstration per seed: Reset(seed), then up to EpisodeLength() steps of
+/// Noise injected into the executed action while demonstrating (DART, Laskey et al. 2017): the
+/// arm moves with u + sigma * scale * N(0, 1) (scale from World::ActionNoiseScale) while the
+/// teacher's own u is stored as the label, so the data shows how the teacher recovers from the
+/// small errors a learner will make. sigma = 0 is off.
+struct DemoNoise {
+  double sigma = 0.0;  ///< in the action's units (rad/s for the arm worlds)
+  /// Each take's noise is drawn from Derive(seed, take seed): reproducible per take.
+  uint64_t seed = 0;
+};
+
+/// A run's demonstrations are grouped into configurations: demonstration i is take i % n of
+/// configuration i / n (n = World::DemosPerConfiguration), and a configuration's scene comes from
+/// the scenario seed of its first take. UserError when `demos` is not a multiple of n, naming
+/// `option`, n and how the demonstrations would have split.
+void CheckDemosFillConfigurations(const World& world, int demos, const std::string& option);
+
+/// Resets `world` for demonstration `index` of `seeds` (see CheckDemosFillConfigurations).
+void ResetForDemo(World& world, const std::vector<uint64_t>& seeds, size_t index);
+
+/// Perturbs an action for execution (DemoNoise); returns u unchanged when noise is off or the
+/// world has no noise scale.
+std::vector<float> PerturbAction(const World& world, const std::vector<float>& u, double sigma,
+                                 Rng& rng);
+
+/// Records one demonstration per seed: ResetForDemo, then up to EpisodeLength() steps of
 /// (x, y, b, u) with the expert acting (fewer when DemonstrationDone() says the teacher stopped);
 /// also `play_per_scenario` play samples per scenario (drawn from the initial scenario before the
-/// demonstration runs). Used by experiments and by `recon record`.
+/// demonstration runs). With `noise`, the executed actions are perturbed and the expert's
+/// actions kept as labels. Used by experiments and by `recon record`.
 Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
-                             int play_per_scenario);
+                             int play_per_scenario, const DemoNoise& noise = {});
 
 /// A policy as the world sees it: an action for an observation. No beacon: a trained policy never
 /// needs one.

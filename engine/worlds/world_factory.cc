@@ -20,17 +20,26 @@ namespace {
 
 const std::vector<std::string>& WorldNames() {
   static const std::vector<std::string> kNames = {"dynamic2d", "dynamic2d-state", "static2d",
-                                                  "bintransfer", "tabletop"};
+                                                  "bintransfer", "tabletop", "tabletop-state"};
   return kNames;
 }
 
 bool WorldNeedsRenderer(const std::string& name) { return name == "tabletop"; }
 
+std::vector<std::string> WorldLayouts(const std::string& world) {
+  if (world == "tabletop" || world == "tabletop-state") return Tabletop::Layouts();
+  return {};
+}
+
+double DefaultBeaconNoise(const std::string& world) {
+  return world == "tabletop" || world == "tabletop-state" ? Tabletop::kDwm1001NoiseSigma_m : 0.0;
+}
+
 const std::vector<std::string>& WorldPlacements(const std::string& name) {
   if (name == "dynamic2d" || name == "dynamic2d-state") return Dynamic2D::Placements();
   if (name == "static2d") return Static2D::Placements();
   if (name == "bintransfer") return BinTransferPlacements();
-  if (name == "tabletop") return Tabletop::Placements();
+  if (name == "tabletop" || name == "tabletop-state") return Tabletop::Placements();
   ThrowUnknownWorld(name);
 }
 
@@ -81,6 +90,14 @@ std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& pla
     return MakeStatic2D(options);
   }
   if (name == "bintransfer") return MakeBinTransfer(placement, noise_sigma);
+  if (name == "tabletop-state") {
+    TabletopOptions options;
+    options.placement = placement;
+    options.noise_sigma_m = noise_sigma;
+    options.layout = cell.layout;
+    options.observation = "state";
+    return std::make_unique<Tabletop>(options, nullptr);
+  }
   if (name == "tabletop") {
     if (!cell.renderer_factory) {
       throw UserError(
@@ -91,6 +108,7 @@ std::unique_ptr<World> MakeWorld(const std::string& name, const std::string& pla
     options.placement = placement;
     options.noise_sigma_m = noise_sigma;
     options.image_width = options.image_height = cell.image_size;
+    options.layout = cell.layout;
     return std::make_unique<Tabletop>(options, cell.renderer_factory());
   }
   ThrowUnknownWorld(name);

@@ -15,11 +15,22 @@ namespace recon::worlds {
 struct CellResources {
   SceneRendererFactory renderer_factory;  ///< needed by worlds that observe camera images
   int image_size = 64;                    ///< camera images are image_size x image_size
+  /// The tabletop's scene layout: "paper" (the plate at one of two places, demonstrations two per
+  /// configuration) or "wide" (TabletopOptions::layout).
+  std::string layout = "paper";
 };
+
+/// Layouts a world offers ({"paper", "wide"} for tabletop, empty for the others).
+std::vector<std::string> WorldLayouts(const std::string& world);
+
+/// The beacon noise a new session or experiment of `world` records with unless told otherwise:
+/// a real DWM1001's for the tabletop (the paper's real beacon), 0 for the others.
+double DefaultBeaconNoise(const std::string& world);
 
 /// Names MakeWorld accepts: "dynamic2d" (image observations), "dynamic2d-state" (the 14-vector
 /// state instead of the image), "static2d", and the simulated cell's "bintransfer" and
-/// "tabletop" (camera images; needs CellResources::renderer_factory).
+/// "tabletop" (camera images; needs CellResources::renderer_factory), and "tabletop-state" (the
+/// tabletop with the objects' true positions instead of the image: a privileged diagnostic).
 const std::vector<std::string>& WorldNames();
 
 /// True for worlds that observe camera images of the MuJoCo cell and so need a renderer.

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "engine/core/error.h"
+#include "engine/learn/architecture.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "tests/learn/test_data.h"
@@ -50,6 +51,14 @@ torch::Tensor ReadTensor(const std::string& path, const std::string& key) {
   torch::Tensor t;
   archive.read(key, t);
   return t;
+}
+
+std::string ReadCheckpointString(const std::string& path, const std::string& key) {
+  torch::serialize::InputArchive archive;
+  archive.load_from(path);
+  c10::IValue value;
+  if (!archive.try_read(key, value)) return "";
+  return value.toStringRef();
 }
 
 TEST(CheckpointTest, RoundTripGivesTheSamePolicy) {
@@ -100,6 +109,62 @@ TEST(CheckpointTest, ResumeContinuesExactly) {
     EXPECT_TRUE(torch::equal(ReadTensor(straight_path, key), ReadTensor(resumed_path, key))) << key;
   }
   EXPECT_TRUE(BitwiseEqual(Probe(resumed->policy(), data), Probe(straight.policy(), data)));
+}
+
+TEST(CheckpointTest, SpatialSoftmaxModelSavesLoadsAndResumesExactly) {
+  const Dataset data = MakeImageTask(8, 24, 16, 6);
+  NetworkConfig network = SmallImageNet();
+  network.conv_channels = {4};  // 7x7 planes
+  network.spatial_softmax = true;
+  const int steps = 30;
+  Trainer straight(data, network, ShortAuthors(steps));
+  straight.Train();
+  const std::string path = TempPath("keypoints.ckpt");
+  straight.SaveCheckpoint(path);
+  EXPECT_TRUE(NetworkConfigFromJson(ReadCheckpointString(path, "network")).spatial_softmax);
+  const Policy loaded = LoadPolicy(path);
+  EXPECT_TRUE(BitwiseEqual(Probe(loaded, data), Probe(straight.policy(), data)));
+
+  Trainer first_half(data, network, ShortAuthors(steps));
+  std::atomic<bool> cancel{false};
+  first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step + 1 == steps / 2; });
+  ASSERT_TRUE(first_half.Train(&cancel).cancelled);
+  const std::string half_path = TempPath("keypoints_half.ckpt");
+  first_half.SaveCheckpoint(half_path);
+  const std::unique_ptr<Trainer> resumed = Trainer::Resume(half_path, data);
+  EXPECT_EQ(resumed->network_config(), network);
+  resumed->Train();
+  const std::string resumed_path = TempPath("keypoints_resumed.ckpt");
+  resumed->SaveCheckpoint(resumed_path);
+  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+    EXPECT_TRUE(torch::equal(ReadTensor(path, key), ReadTensor(resumed_path, key))) << key;
+  }
+  // The temperature is a trained weight like any other: it moved from log T = 0.
+  const torch::Tensor params = ReadTensor(path, "params");
+  const Architecture arch = BuildArchitecture(data.spec, network, Method::kRecon);
+  EXPECT_NE(params[arch.keypoints.log_temperature].item<float>(), 0.0f);
+
+  // The same file read as a network without the layer does not fit its weights.
+  torch::serialize::InputArchive in;
+  in.load_from(path);
+  torch::serialize::OutputArchive out;
+  for (const char* key : {"format", "train", "spec", "state"}) {
+    c10::IValue value;
+    ASSERT_TRUE(in.try_read(key, value));
+    out.write(key, value);
+  }
+  NetworkConfig without = network;
+  without.spatial_softmax = false;
+  out.write("network", c10::IValue(ToJson(without)));
+  for (const char* key : {"params", "target_scaling", "exp_avg", "exp_avg_sq"}) {
+    torch::Tensor t;
+    in.read(key, t);
+    out.write(key, t);
+  }
+  const std::string bad = TempPath("keypoints_off.ckpt");
+  out.save_to(bad);
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(bad); }), HasSubstr("architecture differs"));
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(bad, data); }), HasSubstr("architecture differs"));
 }
 
 TEST(CheckpointTest, ResumeRejectsOtherData) {

@@ -6,6 +6,7 @@
 #include <torch/torch.h>
 
 #include <cmath>
+#include <optional>
 
 #include "engine/core/malloc_tuning.h"
 #include "engine/learn/architecture.h"
@@ -36,7 +37,16 @@ class TorchModel {
       h = torch::conv2d(h, w, Slice(c.bias, {c.out_channels}));
       h = torch::max_pool2d(torch::relu(h), 2);  // the authors' order
     }
-    return Mlp(arch_.feature, h.flatten(1));
+    if (!arch_.spatial_softmax) return Mlp(arch_.feature, h.flatten(1));
+    // Written independently of ours: softmax of f / T over each [h][w] plane, coordinates from
+    // linspace, keypoints [x_c, y_c] per channel.
+    const SpatialSoftmaxLayer& k = arch_.keypoints;
+    const torch::Tensor temperature = torch::exp(Slice(k.log_temperature, {1}));
+    const torch::Tensor s =
+        torch::softmax(h.flatten(2) / temperature, 2).view({-1, k.channels, k.h, k.w});
+    const torch::Tensor xs = torch::linspace(-1, 1, k.w), ys = torch::linspace(-1, 1, k.h);
+    const torch::Tensor ex = (s.sum(2) * xs).sum(2), ey = (s.sum(3) * ys).sum(2);
+    return Mlp(arch_.feature, torch::stack({ex, ey}, 2).flatten(1));
   }
   torch::Tensor Policy(const torch::Tensor& x, const torch::Tensor& phi) const {
     return Mlp(arch_.policy, torch::cat({x, phi}, 1));
@@ -99,6 +109,7 @@ struct Case {
   Method method = Method::kRecon;
   LossKind loss = LossKind::kMseSample;
   int batch = 5;
+  std::optional<float> log_temperature;  ///< spatial softmax: replaces the initial log T = 0
 };
 
 void CheckAgainstAutograd(const Case& c) {
@@ -107,6 +118,7 @@ void CheckAgainstAutograd(const Case& c) {
   Rng rng(11);
   InitializeParameters(arch, rng, params.data());
   for (float& p : params) p += static_cast<float>(rng.Uniform(-0.05, 0.05));  // biases != 0
+  if (c.log_temperature.has_value()) params[arch.keypoints.log_temperature] = *c.log_temperature;
 
   const DataSpec& s = c.data.spec;
   const int b = c.batch, u = s.u_dim, d = s.b_dim;
@@ -206,6 +218,11 @@ void CheckAgainstAutograd(const Case& c) {
       check(l.bias, l.out, name + std::to_string(i) + " bias");
     }
   };
+  if (arch.spatial_softmax) {
+    check(arch.keypoints.log_temperature, 1, "spatial softmax log temperature");
+    // A zero gradient would pass the check vacuously.
+    EXPECT_NE(grads[arch.keypoints.log_temperature], 0.0f);
+  }
   check_mlp(arch.feature, "feature ");
   check_mlp(arch.policy, "policy ");
   check_mlp(arch.beacon, "beacon ");
@@ -247,6 +264,49 @@ TEST_P(ModelGradientTest, ImageModelsMatchAutograd) {
     c.data = MakeImageTask(3, 6, 16, 6);
     c.network = testing::SmallImageNet();
     c.network.image_scale = 1.0f;
+    c.method = Method::kBaseline;
+    CheckAgainstAutograd(c);
+  }
+}
+
+TEST_P(ModelGradientTest, SpatialSoftmaxModelsMatchAutograd) {
+  {
+    SCOPED_TRACE("authors' CNN on 3x32x32 (5x5 planes), NLL, T = 1");
+    Case c;
+    c.data = MakeImageTask(5, 6, 32, 6);
+    c.network.image_scale = 1.0f / 255.0f;
+    c.network.spatial_softmax = true;
+    c.loss = LossKind::kNll;
+    CheckAgainstAutograd(c);
+  }
+  {
+    SCOPED_TRACE("one block on 15x15 (6x6 planes), MSE of a sample, T = 0.4");
+    Case c;
+    c.data = MakeImageTask(6, 6, 15, 6);
+    c.network = testing::SmallImageNet();
+    c.network.conv_channels = {5};
+    c.network.spatial_softmax = true;
+    c.log_temperature = std::log(0.4f);
+    CheckAgainstAutograd(c);
+  }
+  {
+    SCOPED_TRACE("non-square 3x8x32 images (3x15 planes: x and y must not swap), T = 3");
+    Case c;
+    c.data = MakeImageTask(7, 6, 16, 6);
+    c.data.spec.y_shape = {3, 8, 32};  // the same pixels, seen as another shape
+    c.network = testing::SmallImageNet();
+    c.network.conv_channels = {4};
+    c.network.spatial_softmax = true;
+    c.log_temperature = std::log(3.0f);
+    CheckAgainstAutograd(c);
+  }
+  {
+    SCOPED_TRACE("Baseline, raw pixel values (nearly one-hot softmax on 2x2 planes)");
+    Case c;
+    c.data = MakeImageTask(8, 6, 16, 6);
+    c.network = testing::SmallImageNet();
+    c.network.image_scale = 1.0f;
+    c.network.spatial_softmax = true;
     c.method = Method::kBaseline;
     CheckAgainstAutograd(c);
   }

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/training_data.h"
 #include "tests/learn/test_data.h"
@@ -117,6 +118,52 @@ TEST(TargetScalingTest, TrainedPolicyAnswersInTheRecordedUnits) {
   const Sample& s = data.demos[0].samples[0];
   EXPECT_EQ(loaded.Act(s.x, s.y), policy.Act(s.x, s.y));
   EXPECT_EQ(loaded.PredictBeacon(s.x, s.y), policy.PredictBeacon(s.x, s.y));
+}
+
+// Joint angles in degrees around 90 and a vector y in millimetres: with standardize_inputs the
+// networks see unit-scale inputs, the policy applies the same scaling when it acts, and
+// checkpoints written with or without it read back.
+TEST(TargetScalingTest, InputsAreStandardisedForTrainingAndActing) {
+  Dataset data = testing::MakeVectorTask(14, 30);
+  for (Episode& e : data.demos) {
+    for (Sample& s : e.samples) {
+      for (float& v : s.x) v = 90.0f + 30.0f * v;
+      for (float& v : s.y) v = 1000.0f * v;
+    }
+  }
+  TrainingData stacked = TrainingData::From(data, 1.0f);
+  TargetScaling scaling = TargetScaling::Fit(stacked);
+  EXPECT_FALSE(scaling.ScalesInputs());
+  scaling.FitInputs(stacked);
+  ASSERT_TRUE(scaling.ScalesInputs());
+  EXPECT_NEAR(scaling.x_offset[0], 90.0f, 6.0f);
+  EXPECT_NEAR(scaling.x_scale[0], 30.0f / std::sqrt(3.0f), 3.0f);  // U(-1, 1) * 30
+  EXPECT_EQ(scaling.y_offset.size(), 6u);
+  std::vector<float> x = {scaling.x_offset[0] + scaling.x_scale[0],
+                          scaling.x_offset[1] - 2 * scaling.x_scale[1]};
+  std::vector<float> y(6);
+  for (int k = 0; k < 6; ++k) y[k] = scaling.y_offset[k] + 0.5f * scaling.y_scale[k];
+  scaling.ApplyToInputs(x.data(), y.data());
+  EXPECT_NEAR(x[0], 1.0f, 1e-5);
+  EXPECT_NEAR(x[1], -2.0f, 1e-5);
+  for (float v : y) EXPECT_NEAR(v, 0.5f, 1e-5);
+  // Checkpoints: with inputs, and (older, or without) targets only.
+  EXPECT_EQ(TargetScaling::Unflatten(data.spec, scaling.Flatten()), scaling);
+  const TargetScaling targets_only = TargetScaling::Fit(stacked);
+  EXPECT_EQ(TargetScaling::Unflatten(data.spec, targets_only.Flatten()), targets_only);
+
+  TrainConfig train;
+  train.steps = 1500;
+  train.seed = 4;
+  train.standardize_inputs = true;
+  Trainer trainer(data, NetworkConfig{}, train);
+  trainer.Train();
+  // u = 0.5 (y01 / 1000 - (x - 90) / 30): learnable only if acting scales x and y as training did.
+  EXPECT_LT(testing::ActionMse(trainer.policy(), data), 0.01);
+  const std::string path = ::testing::TempDir() + "/recon_input_scaling.ckpt";
+  trainer.SaveCheckpoint(path);
+  EXPECT_EQ(testing::Probe(LoadPolicy(path), data), testing::Probe(trainer.policy(), data));
+  EXPECT_TRUE(TrainConfigFromJson(ToJson(train)).standardize_inputs);
 }
 
 }  // namespace

@@ -74,6 +74,24 @@ std::vector<Case> Cases() {
       }
     }
   }
+  // The spatial-softmax keypoint layer on the authors' CNN (5x5 planes): RECON with the NLL, the
+  // Baseline with the MSE of a sample. Pixels scaled to [0, 1]: on raw 0-255 values the softmax
+  // starts one-hot at T = 1, so most convolution gradients are at Adam's epsilon, where the
+  // first update's sign is rounding noise (gradient_test.cc checks that case's gradients).
+  for (Method method : {Method::kRecon, Method::kBaseline}) {
+    Case c;
+    c.name = "image spatial-softmax " + ToString(method);
+    c.data = MakeImageTask(23, 24, 32, 12);
+    c.network.spatial_softmax = true;
+    c.network.image_scale = 1.0f / 255.0f;
+    c.train = method == Method::kBaseline ? AuthorsRecipe() : TrainConfig{};
+    c.train.restart_rule = false;
+    c.train.method = method;
+    c.train.seed = 6;
+    c.train.play_weight = 0.7;
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   return cases;
 }
 
@@ -157,36 +175,44 @@ TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
   }
 }
 
-// Features and actions of the first samples, and the last step's loss, after 50 steps.
-struct After50 {
+// The losses of the first steps, and the features and actions of the first samples after them.
+// A few steps, not fifty: some of these runs are chaotic under rounding over a long horizon (the
+// authors' CNN on raw pixels with the NLL: our generic and vector kernels end 10% apart after 50
+// steps), so a long-horizon bound would pass or fail by the CPU's kernels, not by a defect.
+// Within kFewSteps the two backends must agree to float rounding on every CPU. (The long-horizon
+// spread is measured by bench/learn_bench, not asserted.)
+constexpr int kFewSteps = 5;
+
+struct AfterFewSteps {
+  std::vector<float> losses;  ///< total loss of each step
   std::vector<float> probe;
-  float loss = 0;
 };
 
-After50 Train50(const Case& c, Backend backend) {
+AfterFewSteps TrainFewSteps(const Case& c, Backend backend) {
   TrainerImpl trainer(c.data, c.network, WithBackend(c.train, backend));
-  for (int i = 0; i < 50; ++i) trainer.Step();
-  return {Probe(Policy(trainer.MakePolicy()), c.data), trainer.State().last.total_loss};
+  AfterFewSteps out;
+  for (int i = 0; i < kFewSteps; ++i) {
+    trainer.Step();
+    out.losses.push_back(trainer.State().last.total_loss);
+  }
+  out.probe = Probe(Policy(trainer.MakePolicy()), c.data);
+  return out;
 }
 
-TEST(TorchBackendTest, FiftyStepsStayCloseToTheFusedBackend) {
+TEST(TorchBackendTest, FirstStepsStayCloseToTheFusedBackend) {
   for (const Case& c : Cases()) {
     SCOPED_TRACE(c.name);
-    const After50 fused = Train50(c, Backend::kFused), torch = Train50(c, Backend::kTorch);
-    // The yardstick for "rounds differently": our own kernels on another instruction set.
-    const std::string best = kernels::Kernels().name;
-    ASSERT_TRUE(kernels::UseKernels("generic"));
-    const After50 generic = Train50(c, Backend::kFused);
-    kernels::UseKernels(best);
-
-    // Some of these runs are chaotic under rounding (the authors' CNN on raw pixels with the
-    // NLL: our generic and vector kernels end 10% apart), so the tolerance is the larger of 1%
-    // and twice the spread between our own kernel tables.
-    const double scale = MaxAbs(fused.probe);
-    EXPECT_LE(MaxAbsDiff(torch.probe, fused.probe),
-              std::max(0.01 * scale, 2 * MaxAbsDiff(generic.probe, fused.probe)));
-    EXPECT_LE(std::abs(torch.loss - fused.loss),
-              std::max(0.01 * std::abs(fused.loss), 2.0 * std::abs(generic.loss - fused.loss)));
+    const AfterFewSteps fused = TrainFewSteps(c, Backend::kFused);
+    const AfterFewSteps torch = TrainFewSteps(c, Backend::kTorch);
+    ASSERT_EQ(torch.losses.size(), fused.losses.size());
+    for (size_t i = 0; i < fused.losses.size(); ++i) {
+      // Adam's first updates are about lr * sign(g) per weight: rounding can flip the sign of a
+      // near-zero gradient, which moves that weight by at most 2 lr per step and the loss by
+      // far less than 1e-3 of its size.
+      EXPECT_NEAR(torch.losses[i], fused.losses[i], 1e-3 * std::max(1.0f, std::abs(fused.losses[i])))
+          << "step " << i;
+    }
+    EXPECT_LE(MaxAbsDiff(torch.probe, fused.probe), 2e-3 * std::max(1.0, MaxAbs(fused.probe)));
     // They do round differently: bitwise equality would mean the Torch path never ran.
     if (c.data.spec.YIsImage()) {
       EXPECT_FALSE(BitwiseEqual(torch.probe, fused.probe));

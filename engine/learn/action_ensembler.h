@@ -1,0 +1,36 @@
+#pragma once
+
+// Temporal ensembling of action chunks (Zhao et al., ACT 2023). A policy that predicts the next k
+// actions at every step has, for the current step, up to k predictions made at the last k steps.
+// Acting on their weighted mean, w_i = exp(-m i) with i = 0 the oldest prediction, smooths the
+// motion and lets an early, committed plan outvote a single step's jitter.
+
+#include <deque>
+#include <vector>
+
+namespace recon::learn {
+
+class ActionEnsembler {
+ public:
+  /// `chunk` actions of `action_dim` values per prediction; `m` >= 0 (ACT's 0.01).
+  ActionEnsembler(int chunk, int action_dim, double m = 0.01);
+
+  /// Adds this step's prediction (chunk * action_dim values, the current step's action first)
+  /// and returns the action to execute now. Call once per step, in order.
+  std::vector<float> Step(const std::vector<float>& chunk_prediction);
+  /// Forgets every prediction (a new episode).
+  void Reset() { predictions_.clear(); }
+
+  /// The weights Step applies to the predictions it holds for the current step, oldest first
+  /// (normalised to sum 1), when `count` predictions overlap it.
+  std::vector<double> Weights(int count) const;
+
+ private:
+  int chunk_, action_dim_;
+  double m_;
+  /// The predictions still covering the current step, oldest first; each is trimmed at the
+  /// front as steps pass, so its first action is always the current step's.
+  std::deque<std::vector<float>> predictions_;
+};
+
+}  // namespace recon::learn

@@ -1,0 +1,32 @@
+#include "engine/learn/augmentation.h"
+
+#include <algorithm>
+
+namespace recon::learn {
+
+void ShiftImage(const float* image, int channels, int height, int width, int dy, int dx,
+                float* out) {
+  for (int c = 0; c < channels; ++c) {
+    const float* plane = image + static_cast<int64_t>(c) * height * width;
+    float* target = out + static_cast<int64_t>(c) * height * width;
+    for (int r = 0; r < height; ++r) {
+      const float* row = plane + static_cast<int64_t>(std::clamp(r + dy, 0, height - 1)) * width;
+      float* dest = target + static_cast<int64_t>(r) * width;
+      // Columns left of the image repeat its first pixel, those right of it its last.
+      const int first = std::clamp(-dx, 0, width), last = std::clamp(width - dx, 0, width);
+      std::fill(dest, dest + first, row[0]);
+      std::copy(row + first + dx, row + last + dx, dest + first);
+      std::fill(dest + last, dest + width, row[width - 1]);
+    }
+  }
+}
+
+Shift DrawShift(Rng& rng, int pad) {
+  const uint64_t span = static_cast<uint64_t>(2 * pad + 1);
+  Shift s;
+  s.dy = static_cast<int>(rng.UniformInt(span)) - pad;
+  s.dx = static_cast<int>(rng.UniformInt(span)) - pad;
+  return s;
+}
+
+}  // namespace recon::learn

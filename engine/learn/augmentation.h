@@ -1,0 +1,29 @@
+#pragma once
+
+// Random-shift image augmentation (Kostrikov et al., DrQ 2020): pad the image by `pad` pixels,
+// replicating the border, and crop it back to its size at a random offset. A few demonstrations
+// show the camera the same few scenes; shifting them by a few pixels teaches the feature network
+// that a pixel's exact place carries less than what is there. Training only: a policy acting sees
+// the image as it is.
+
+#include <cstdint>
+
+#include "engine/core/rng.h"
+
+namespace recon::learn {
+
+/// The largest shift TrainConfig::random_shift_px accepts (in pixels).
+constexpr int kMaxRandomShiftPx = 16;
+
+/// Writes `image` (channels-first, channels x height x width) shifted by (dy, dx) pixels into
+/// `out`: out(c, r, k) = image(c, clamp(r + dy), clamp(k + dx)), i.e. the border replicated.
+void ShiftImage(const float* image, int channels, int height, int width, int dy, int dx,
+                float* out);
+
+/// One draw of a shift in [-pad, pad] per axis from `rng` (dy first, then dx).
+struct Shift {
+  int dy = 0, dx = 0;
+};
+Shift DrawShift(Rng& rng, int pad);
+
+}  // namespace recon::learn

@@ -1,0 +1,139 @@
+// Random-shift augmentation (DrQ): the shift itself, its draws, and training with it.
+
+#include "engine/learn/augmentation.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/learn/config_json.h"
+#include "engine/learn/learner.h"
+#include "tests/learn/test_data.h"
+
+namespace recon::learn {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A 2-channel 3 x 4 image whose value names its place: 100 c + 10 r + k.
+std::vector<float> NamedImage() {
+  std::vector<float> image;
+  for (int c = 0; c < 2; ++c) {
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 4; ++k) image.push_back(static_cast<float>(100 * c + 10 * r + k));
+    }
+  }
+  return image;
+}
+
+float At(const std::vector<float>& image, int c, int r, int k) { return image[(c * 3 + r) * 4 + k]; }
+
+TEST(AugmentationTest, ShiftMovesThePixelsAndReplicatesTheBorder) {
+  const std::vector<float> image = NamedImage();
+  std::vector<float> out(image.size());
+  ShiftImage(image.data(), 2, 3, 4, 0, 0, out.data());
+  EXPECT_EQ(out, image);
+  for (int dy = -4; dy <= 4; ++dy) {
+    for (int dx = -5; dx <= 5; ++dx) {
+      ShiftImage(image.data(), 2, 3, 4, dy, dx, out.data());
+      for (int c = 0; c < 2; ++c) {
+        for (int r = 0; r < 3; ++r) {
+          for (int k = 0; k < 4; ++k) {
+            const int sr = std::clamp(r + dy, 0, 2), sk = std::clamp(k + dx, 0, 3);
+            ASSERT_EQ(At(out, c, r, k), 100 * c + 10 * sr + sk)
+                << "shift " << dy << "," << dx << " at " << c << "," << r << "," << k;
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(AugmentationTest, DrawsCoverTheRangeAndRepeatFromTheSeed) {
+  Rng a(5), b(5);  // seed 5
+  std::vector<int> seen(9, 0);
+  for (int i = 0; i < 2000; ++i) {
+    const Shift s = DrawShift(a, 4);
+    const Shift t = DrawShift(b, 4);
+    ASSERT_EQ(s.dy, t.dy);
+    ASSERT_EQ(s.dx, t.dx);
+    ASSERT_GE(s.dy, -4);
+    ASSERT_LE(s.dy, 4);
+    ASSERT_GE(s.dx, -4);
+    ASSERT_LE(s.dx, 4);
+    ++seen[s.dx + 4];
+  }
+  for (int count : seen) EXPECT_GT(count, 150);  // about 222 each
+}
+
+TrainConfig ShiftConfig(int shift) {
+  TrainConfig train;
+  train.steps = 60;
+  train.seed = 9;
+  train.random_shift_px = shift;
+  return train;
+}
+
+TEST(AugmentationTest, TrainingWithShiftsIsReproducibleAndDiffersFromWithout) {
+  const Dataset data = testing::MakeImageTask(11, 24, 16, 6);
+  auto run = [&](const TrainConfig& train) {
+    Trainer trainer(data, testing::SmallImageNet(), train);
+    trainer.Train();
+    return testing::Probe(trainer.policy(), data);
+  };
+  const std::vector<float> shifted = run(ShiftConfig(2));
+  EXPECT_TRUE(testing::BitwiseEqual(shifted, run(ShiftConfig(2))));
+  EXPECT_FALSE(testing::BitwiseEqual(shifted, run(ShiftConfig(0))));
+  EXPECT_FALSE(testing::BitwiseEqual(shifted, run(ShiftConfig(3))));
+}
+
+TEST(AugmentationTest, ACheckpointResumesTheShiftsBitwise) {
+  const Dataset data = testing::MakeImageTask(12, 24, 16, 6);
+  TrainConfig train = ShiftConfig(3);
+  Trainer whole(data, testing::SmallImageNet(), train);
+  whole.Train();
+  std::atomic<bool> cancel{false};
+  Trainer half(data, testing::SmallImageNet(), train);
+  half.SetObserver([&](const StepMetrics& m) {
+    if (m.step == 29) cancel = true;
+  });
+  ASSERT_TRUE(half.Train(&cancel).cancelled);
+  const std::string path = ::testing::TempDir() + "/recon_augment_resume.ckpt";
+  half.SaveCheckpoint(path);
+  auto resumed = Trainer::Resume(path, data);
+  resumed->Train();
+  EXPECT_TRUE(testing::BitwiseEqual(testing::Probe(resumed->policy(), data),
+                                    testing::Probe(whole.policy(), data)));
+}
+
+TEST(AugmentationTest, TheSettingIsStoredAndBadValuesAreRefused) {
+  TrainConfig train = ShiftConfig(4);
+  EXPECT_EQ(TrainConfigFromJson(ToJson(train)).random_shift_px, 4);
+  nlohmann::json j = nlohmann::json::parse(ToJson(train));
+  j.erase("random_shift_px");  // as written before the setting existed
+  EXPECT_EQ(TrainConfigFromJson(j.dump()).random_shift_px, 0);
+
+  const Dataset images = testing::MakeImageTask(13, 8, 16);
+  for (int bad : {-1, kMaxRandomShiftPx + 1}) {
+    try {
+      Trainer trainer(images, testing::SmallImageNet(), ShiftConfig(bad));
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const UserError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("random_shift_px must be between 0 and 16"));
+    }
+  }
+  try {
+    Trainer trainer(testing::MakeVectorTask(3, 4), NetworkConfig{}, ShiftConfig(2));
+    ADD_FAILURE() << "shifted a vector";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("y is a vector"));
+  }
+}
+
+}  // namespace
+}  // namespace recon::learn
