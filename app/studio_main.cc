@@ -167,9 +167,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 0.5));
   app.add_option("--demo-noise", flags.options.demo_noise_sigma,
                  "noise injected into the executed joint velocities while demonstrating in a new "
-                 "session (DART, rad/s; 0 = off)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+                 "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
   app.add_option("--cell", flags.options.cell_profile,
                  "teach with the real devices of this cell profile (JSON: camera, beacons, UR "

@@ -54,6 +54,65 @@ def sample_mse(mean, logvar, target):
     return F.mse_loss(sample, target)
 
 
+class TabletopFeatures(nn.Module):
+    """The authors' CNN on the tabletop's 3 x 64 x 64 camera (16 x 13 x 13 after two blocks)."""
+
+    def __init__(self):
+        super().__init__()
+        self.conv1 = nn.Conv2d(3, 6, 5)
+        self.conv2 = nn.Conv2d(6, 16, 5)
+        self.fc1 = nn.Linear(16 * 13 * 13, 120)
+        self.fc2 = nn.Linear(120, 60)
+        self.fc3 = nn.Linear(60, 6)
+
+    def forward(self, y):
+        h = F.max_pool2d(F.relu(self.conv1(y)), 2)
+        h = F.max_pool2d(F.relu(self.conv2(h)), 2)
+        h = torch.flatten(h, 1)
+        return self.fc3(F.relu(self.fc2(F.relu(self.fc1(h)))))
+
+
+def nll(mean, logvar, target):
+    return (0.5 * (logvar + (target - mean) ** 2 * torch.exp(-logvar))).sum(1).mean()
+
+
+def tabletop_ms_per_step(steps):
+    """The tabletop recipe's step (BM_TrainStepTabletop): RECON (Play), x 7, u 7 in chunks of 10,
+    a (128, 128) policy, Gaussian NLL, pixels scaled to 0-1, batch 20 of demos and 20 of play."""
+    n, chunk = 480, 10
+    images = torch.randint(0, 256, (n, 3, 64, 64)).float() / 255.0
+    play_images = torch.randint(0, 256, (40, 3, 64, 64)).float() / 255.0
+    robot = torch.randn(n, 7)
+    actions = torch.randn(n, 7 * chunk)
+    beacons = torch.randn(n, 2)
+    play_beacons = torch.randn(40, 2)
+    features = TabletopFeatures()
+    policy = Head(13, 128, 7 * chunk, torch.relu)
+    beacon = Head(6, 16, 2, torch.tanh)
+    params = list(features.parameters()) + list(policy.parameters()) + list(beacon.parameters())
+    optimizer = torch.optim.Adam(params, lr=4e-4)
+
+    def step():
+        idx = torch.randint(0, n, (20,))
+        pidx = torch.randint(0, 40, (20,))
+        phi = features(images[idx])
+        u_mean, u_logvar = policy(torch.cat([robot[idx], phi], 1))
+        b_mean, b_logvar = beacon(phi)
+        p_mean, p_logvar = beacon(features(play_images[pidx]))
+        loss = (nll(u_mean, u_logvar, actions[idx]) / chunk + nll(b_mean, b_logvar, beacons[idx]) +
+                nll(p_mean, p_logvar, play_beacons[pidx]))
+        optimizer.zero_grad()
+        loss.backward()
+        optimizer.step()
+
+    for _ in range(20):  # warm-up
+        step()
+    start = time.perf_counter()
+    for _ in range(steps):
+        step()
+    return 1000.0 * (time.perf_counter() - start) / steps
+
+
 def main():
     steps = int(sys.argv[1]) if len(sys.argv) > 1 else 1000
     n = 100  # 10 demos x 10 steps
@@ -86,6 +145,7 @@ def main():
         step()
     elapsed = time.perf_counter() - start
     print(json.dumps({"ms_per_step": 1000.0 * elapsed / steps, "steps": steps,
+                      "tabletop_ms_per_step": tabletop_ms_per_step(max(50, steps // 10)),
                       "torch": torch.__version__}))
 
 

@@ -103,10 +103,16 @@ def main():
             results[name] = {"value": 100.0 * (1.0 - rate(ours) / rate(bare)), "unit": "%",
                              "mj_steps_per_s": rate(ours), "bare_mj_steps_per_s": rate(bare)}
     reference_ms = None
+    tabletop_reference_ms = None
     if a.pytorch:
         with open(a.pytorch) as f:
-            reference_ms = json.load(f)["ms_per_step"]
+            reference = json.load(f)
+        reference_ms = reference["ms_per_step"]
         results["pytorch_reference_train_step"] = {"value": reference_ms, "unit": "ms"}
+        tabletop_reference_ms = reference.get("tabletop_ms_per_step")
+        if tabletop_reference_ms:
+            results["pytorch_reference_tabletop_step"] = {"value": tabletop_reference_ms,
+                                                          "unit": "ms"}
     if a.figure:
         with open(a.figure) as f:
             results["dynamic2d_full_figure"] = {"value": json.load(f)["wall_seconds"], "unit": "s"}
@@ -129,6 +135,9 @@ def main():
             if reference_ms:
                 r["speedup_vs_pytorch"] = reference_ms / r["value"]
                 note += f", {reference_ms / r['value']:.2f}x PyTorch"
+        if base == "BM_TrainStepTabletop" and tabletop_reference_ms:
+            r["speedup_vs_pytorch"] = tabletop_reference_ms / r["value"]
+            note += f"{tabletop_reference_ms / r['value']:.2f}x PyTorch's same step"
         print(f"{name:{width}s} {r['value']:10.3f} {r['unit']:6s} {target:>12s}  {note}")
 
     out = {

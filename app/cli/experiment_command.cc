@@ -58,7 +58,7 @@ struct ExperimentFlags {
   std::string layout = "paper";
   std::string observation = "image";
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
-  double demo_noise = 0.0;
+  double demo_noise = 0.0;  ///< only when --demo-noise is given; else the world's default
   int random_shift = -1;  ///< -1: the world's recipe
   int action_chunk = -1;  ///< -1: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
@@ -106,7 +106,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     for (experiments::Condition& c : config.conditions) {
       if (c.placement != "none") c.noise_sigma = flags.beacon_noise;
     }
-    config.demo_noise = flags.demo_noise;
+    // Given values (even absurd ones, which ValidateExperimentConfig refuses by name) win.
+    config.demo_noise = command.get_option("--demo-noise")->count() > 0
+                            ? flags.demo_noise
+                            : worlds::DefaultDemoNoise(flags.world);
   }
   config.demos = flags.demos;
   config.runs = flags.runs;
@@ -315,8 +318,7 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
     command
         ->add_option("--demo-noise", flags->demo_noise,
                      "noise injected into the executed joint velocities while demonstrating "
-                     "(DART), rad/s; 0 = off")
-        ->capture_default_str();
+                     "(DART), rad/s; 0 = off (default: 0.05)");
     command
         ->add_option("--observation", flags->observation,
                      "image (the camera) or state (the objects' true positions: a diagnostic of "

@@ -33,7 +33,7 @@ struct RecordFlags {
   uint64_t seed = 1;
   int image_size = 64;
   double noise = 0.0;
-  double demo_noise = 0.0;
+  double demo_noise = 0.0;  ///< only when --demo-noise is given; else the world's default
   std::string layout;
   std::string calibration;
   bool no_calibration = false;
@@ -114,7 +114,9 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
     }
     setup.beacon_noise_sigma =
         command.count("--noise") > 0 ? flags.noise : worlds::DefaultBeaconNoise(flags.world);
-    setup.demo_noise_sigma = flags.demo_noise;
+    setup.demo_noise_sigma = command.count("--demo-noise") > 0
+                                 ? flags.demo_noise
+                                 : worlds::DefaultDemoNoise(flags.world);
   }
 
   store::SessionManifest probe;
@@ -225,7 +227,8 @@ void AddRecordCommand(CLI::App& app) {
   record
       ->add_option("--demo-noise", flags->demo_noise,
                    "noise injected into the executed joint velocities while demonstrating, for a "
-                   "new session (DART; rad/s; default 0 = off)")
+                   "new session (DART; rad/s; 0 = off; default: 0.05 on the tabletop, 0 "
+                   "elsewhere)")
       ->check(CLI::Range(0.0, 1.0));
   record->add_option("--layout", flags->layout,
                      "scene layout of a new tabletop session: paper (default: the plate at one "

@@ -114,7 +114,8 @@ class StudioController::Cell {
       setup.seed = options_.seed;
       setup.beacon_noise_sigma = probe.beacon_noise_sigma;
       setup.layout = probe.layout;
-      setup.demo_noise_sigma = options_.demo_noise_sigma;
+      setup.demo_noise_sigma =
+          options_.demo_noise_sigma.value_or(worlds::DefaultDemoNoise(options_.world));
       store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
       if (real_) real_->DescribeInto(manifest);
       opened.emplace(store::Session::Create(dir, manifest));

@@ -29,8 +29,8 @@ struct StudioOptions {
   std::optional<double> beacon_noise_sigma;
   /// New sessions' tabletop layout ("paper" or "wide").
   std::string layout = "paper";
-  /// New sessions' demonstration noise (DART, rad/s; 0 = off).
-  double demo_noise_sigma = 0.0;
+  /// New sessions' demonstration noise (DART, rad/s; 0 = off); unset: the world's default.
+  std::optional<double> demo_noise_sigma;
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;

@@ -14,7 +14,8 @@ namespace recon::experiments {
 ///   repeat a training layout. No restart rule: its thresholds are calibrated to Dynamic 2D's
 ///   losses and would retrain every run five times;
 /// - camera images stored as 0-255 (`images_are_bytes`) are scaled to 0-1 before the CNN (the
-///   authors' raw 0-255 was for their 32 x 32 Dynamic 2D drawings, which keep it).
+///   authors' raw 0-255 was for their 32 x 32 Dynamic 2D drawings, which keep it);
+/// - the tabletop predicts chunks of 10 actions, ensembled over steps (ACT).
 struct WorldRecipe {
   learn::NetworkConfig network;
   learn::TrainConfig train;

@@ -41,9 +41,11 @@ constexpr double kRetreatHeight_m = 0.25;
 constexpr double kRetreatTolerance_m = 0.03;
 constexpr double kAlignTolerance_m = 0.012;
 constexpr double kDescentTolerance_m = 0.03;
-// The expert closes when the tips are this close to the toast's centre, well inside the window a
-// parallel gripper holds a thin slice in (tips at most 3 mm above its centre, Ur5Arm).
-constexpr double kGraspTolerance_m = 0.004;
+// The expert closes on the way down once the tips are within this distance of the toast's centre
+// in the plane and this height above it; the window a parallel gripper holds a thin slice in is
+// tips at most 3 mm above its centre (Ur5Arm).
+constexpr double kGraspTolerance_m = 0.012;
+constexpr double kCloseHeight_m = 0.012;
 constexpr double kReleaseTolerance_m = 0.02;
 constexpr double kExpertGain_per_s = 2.5;
 // A teleoperating person is slower than a script: at 0.3 rad/s a demonstration takes about
@@ -206,6 +208,9 @@ void Tabletop::PlaceToastAndArm() {
 
 void Tabletop::FinishReset() {
   mj_forward(scene_.model(), scene_.data());
+  grasped_ = false;
+  closest_approach_m_ = (arm_->GripPosition() - ToastPosition()).norm();
+  closes_on_nothing_ = 0;
   CheckReachable();
   Render();
 }
@@ -272,9 +277,25 @@ void Tabletop::Step(const std::vector<float>& u) {
   for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
   arm_->CommandJointVelocities(
       safety_.Apply(arm_->JointPositions(), qd, kControlPeriod_s).command_rad_s);
+  const bool was_closed = arm_->GripperClosed();
   arm_->CommandGripper(u[Ur5Arm::kJoints] > 0.5f);
   arm_->Step(kControlPeriod_s);
+  TrackGrasp(was_closed);
   Render();
+}
+
+void Tabletop::TrackGrasp(bool was_closed) {
+  const bool holding = arm_->HeldObject() == toast_body_;
+  if (holding) {
+    grasped_ = true;
+    return;
+  }
+  if (grasped_) return;  // what happens after the grasp is the plate's part
+  const Eigen::Vector3d offset = arm_->GripPosition() - ToastPosition();
+  closest_approach_m_ = std::min(closest_approach_m_, offset.norm());
+  if (arm_->GripperClosed() && !was_closed) {
+    ++closes_on_nothing_;
+  }
 }
 
 std::vector<float> Tabletop::ExpertAction() const {
@@ -286,7 +307,10 @@ std::vector<float> Tabletop::ExpertAction() const {
       !holding && PlanarDistance(toast, plate) < kPlateRadius_m && toast.z() < kApproachHeight_m;
   bool close = holding;
   Eigen::Vector3d target;
-  if (holding) {
+  if (holding && arm_->FingersClosing()) {
+    // A person waits for the fingers to close on the slice before lifting it.
+    target = grip;
+  } else if (holding) {
     if (PlanarDistance(grip, plate) > kReleaseTolerance_m) {
       // Lift straight up first: a joint-space move from the grasp would sweep the toast along
       // the table.
@@ -307,7 +331,12 @@ std::vector<float> Tabletop::ExpertAction() const {
     target = toast + Eigen::Vector3d(0, 0, kApproachHeight_m);
   } else {
     target = toast;
-    close = (grip - toast).norm() < kGraspTolerance_m;
+    // Close on the way down, as a teleoperating person does: the fingers take 0.6 s to reach
+    // the slice (Ur5Arm), by when the tips have come down into the window. A close that caught
+    // nothing opens again for another try.
+    const bool missed = arm_->GripperClosed() && !arm_->FingersClosing();
+    close = !missed && PlanarDistance(grip, toast) < kGraspTolerance_m &&
+            grip.z() - toast.z() < kCloseHeight_m;
   }
   const Ur5Joints q = arm_->JointPositions();
   const auto goal = arm_->SolveGraspIk(target, 0.0, q);
@@ -377,7 +406,10 @@ std::map<std::string, double> Tabletop::OutcomeDetails() const {
       {"toast_held", arm_->HeldObject() == toast_body_ ? 1.0 : 0.0},
       {"grip_nearer_bowl",
        PlanarDistance(grip, BowlPosition()) < PlanarDistance(grip, PlatePosition()) ? 1.0 : 0.0},
-      {"toast_to_bowl_m", ToastToBowlDistance()}};
+      {"toast_to_bowl_m", ToastToBowlDistance()},
+      {"grasped", grasped_ ? 1.0 : 0.0},
+      {"closest_approach_m", closest_approach_m_},
+      {"closes_on_nothing", static_cast<double>(closes_on_nothing_)}};
 }
 
 int Tabletop::ReplayStateSize() const {

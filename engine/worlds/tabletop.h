@@ -95,7 +95,9 @@ class Tabletop : public World {
   bool TaskSucceeded() const override;
   /// "toast_moved" (the toast left its pick-up place by more than 3 cm), "toast_held" (still in
   /// the gripper at the end), "grip_nearer_bowl" (the gripper ended nearer the bowl than the
-  /// plate: the paper's Baseline failure), "toast_to_bowl_m".
+  /// plate: the paper's Baseline failure), "toast_to_bowl_m", "grasped" (the toast was held at
+  /// some point), "closest_approach_m" (of the grip point to the toast before a grasp) and
+  /// "closes_on_nothing" (the gripper shut without the toast before any grasp).
   std::map<std::string, double> OutcomeDetails() const override;
   /// The pose the current camera image shows, valid after Reset and Step: MuJoCo's qpos (arm
   /// joints, fingers, the toast's free joint) as the frame was rendered from it, then the mocap
@@ -141,6 +143,9 @@ class Tabletop : public World {
   /// After the plate and bowl are placed: positions, the reachability check, the first frame.
   void FinishReset();
   void Render();
+  /// Follows the approach to the toast for OutcomeDetails: the closest the grip point came before
+  /// a grasp, and how often the gripper closed on nothing.
+  void TrackGrasp(bool was_closed);
   /// UserError if the expert's waypoints of this layout are out of the arm's reach.
   void CheckReachable() const;
   std::vector<float> ImageAsY() const;
@@ -156,6 +161,9 @@ class Tabletop : public World {
   int toast_qpos_ = -1;
   int plate_side_ = 1;
   RgbImage image_;
+  bool grasped_ = false;
+  double closest_approach_m_ = 0.0;
+  int closes_on_nothing_ = 0;
 };
 
 }  // namespace recon::worlds

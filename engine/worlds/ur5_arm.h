@@ -60,6 +60,9 @@ class Ur5Arm {
   /// Closes (grasping whatever is between the fingers) or opens (releasing) the gripper.
   void CommandGripper(bool close);
   bool GripperClosed() const { return gripper_closed_; }
+  /// The fingers are still on their way in (the first 0.6 s after a close): an object that comes
+  /// between them meanwhile is caught.
+  bool FingersClosing() const { return closing_left_s_ > 0; }
 
   /// Advances the whole scene by `duration_s` of simulated time under the current commands.
   void Step(double duration_s);
@@ -93,6 +96,7 @@ class Ur5Arm {
   double closing_left_s_ = 0.0;  ///< the fingers are still closing this much longer
   int held_object_ = -1;
   double finger_closed_target_ = 0.0;
+  double finger_setpoint_ = 0.06;  ///< where the fingers are being driven, moving at their speed
 };
 
 }  // namespace recon::worlds

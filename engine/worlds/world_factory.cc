@@ -26,6 +26,10 @@ const std::vector<std::string>& WorldNames() {
 
 bool WorldNeedsRenderer(const std::string& name) { return name == "tabletop"; }
 
+double DefaultDemoNoise(const std::string& world) {
+  return world == "tabletop" || world == "tabletop-state" ? 0.05 : 0.0;
+}
+
 std::vector<std::string> WorldLayouts(const std::string& world) {
   if (world == "tabletop" || world == "tabletop-state") return Tabletop::Layouts();
   return {};

@@ -27,6 +27,11 @@ std::vector<std::string> WorldLayouts(const std::string& world);
 /// a real DWM1001's for the tabletop (the paper's real beacon), 0 for the others.
 double DefaultBeaconNoise(const std::string& world);
 
+/// The noise injected into executed actions while demonstrating (worlds::DemoNoise) that a new
+/// session or experiment of `world` uses unless told otherwise: 0.05 rad/s on the tabletop
+/// (docs/results.md measures it), 0 (off) elsewhere.
+double DefaultDemoNoise(const std::string& world);
+
 /// Names MakeWorld accepts: "dynamic2d" (image observations), "dynamic2d-state" (the 14-vector
 /// state instead of the image), "static2d", and the simulated cell's "bintransfer" and
 /// "tabletop" (camera images; needs CellResources::renderer_factory), and "tabletop-state" (the

@@ -112,20 +112,23 @@ TEST(CellCliTest, BinTransferExperimentScoresActionError) {
 TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   const fs::path out = FreshDir("tabletop");
   const CommandResult r = RunRecon(
-      "experiment tabletop --runs 1 --tests 2 --demos 1,2 --steps 20 --baseline-steps 20 "
+      "experiment tabletop --runs 1 --tests 2 --demos 2,4 --steps 20 --baseline-steps 20 "
       "--image-size 32 --seed 3 --out " +
       out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("success"));
   const nlohmann::json summary = ReadJson(out / "summary.json");
-  for (const char* demos : {"1", "2"}) {
+  for (const char* demos : {"2", "4"}) {
     for (const char* condition : {"baseline", "recon-play"}) {
       const auto& block = summary["by_demos"][demos]["conditions"][condition];
       ASSERT_TRUE(block.is_object()) << demos << " " << condition;
       for (const char* key : {"success_rate", "distance", "sem", "n"}) {
         EXPECT_TRUE(block.contains(key)) << key;
       }
-      EXPECT_TRUE(block["details"].contains("grip_nearer_bowl")) << block.dump();
+      for (const char* key : {"grip_nearer_bowl", "grasped", "closest_approach_m",
+                              "closes_on_nothing"}) {
+        EXPECT_TRUE(block["details"].contains(key)) << key << ": " << block.dump();
+      }
       EXPECT_GE(block["success_rate"].get<double>(), 0.0);
       EXPECT_LE(block["success_rate"].get<double>(), 1.0);
     }
@@ -141,6 +144,37 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   EXPECT_NEAR(two["recon-play"]["total_s"].get<double>(), 2 * per_demo + 4.6 + 2.0, 1e-9);
   EXPECT_TRUE(fs::exists(out / "success.png"));
   EXPECT_TRUE(fs::exists(out / "data_efficiency.png"));
+}
+
+// The protocol's options: each bad value names its option, exits 2 and writes nothing.
+TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
+  const fs::path out = FreshDir("tabletop_bad");
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--layout diagonal", "--layout 'diagonal' does not exist; valid: paper, wide"},
+      {"--demos 4,5", "--demos 5: the tabletop world records 2 demonstrations per scene "
+                      "configuration"},
+      {"--noise -0.1", "--noise must be between 0 and 0.5 m"},
+      {"--noise nan", "--noise"},
+      {"--demo-noise 3", "--demo-noise must be between 0 and 1"},
+      {"--observation depth", "--observation must be 'image'"},
+      {"--random-shift 40", "--random-shift"},
+      {"--action-chunk 0", "--action-chunk"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +
+                                     c.args + " --out " + (out / "x").string());
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(c.message)) << c.args;
+    EXPECT_FALSE(fs::exists(out / "x" / "summary.json")) << c.args;
+  }
+  // The wide layout has no configurations: an odd count is fine there (checked, not run).
+  const CommandResult wide = RunRecon(
+      "experiment tabletop --layout wide --runs 1 --tests 1 --demos 1 --steps 2 --baseline-steps 2 "
+      "--image-size 32 --conditions baseline --out " + (out / "wide").string());
+  EXPECT_EQ(wide.exit_code, 0) << wide.output;
 }
 
 TEST(CellCliTest, TabletopImageSizeOutOfRangeIsRejected) {

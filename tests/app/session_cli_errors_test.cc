@@ -143,4 +143,48 @@ TEST_F(SessionCliTest, WrongArgumentsAreRefused) {
   EXPECT_EQ(ReadBytes(session / "session.json"), manifest);
 }
 
+// A tabletop session keeps its layout and its noise settings; recording into it with others, or
+// a demonstration count that would leave a configuration half-recorded, is refused by name and
+// changes nothing.
+TEST_F(SessionCliTest, TabletopProtocolMismatchesAreRefusedAndChangeNothing) {
+  const fs::path session = Path("t");
+  CommandResult r = Record(session, "--world tabletop --image-size 32 --demos 2 --no-calibration");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("demo_0..demo_1 are takes of configurations 0..0"));
+  const json manifest = ReadJson(session / "session.json");
+  EXPECT_EQ(manifest["cell"]["layout"], "paper");
+  EXPECT_DOUBLE_EQ(manifest["cell"]["beacon_noise_sigma"].get<double>(), 0.07);
+  EXPECT_DOUBLE_EQ(manifest["cell"]["demo_noise_sigma"].get<double>(), 0.05);
+  const std::string before = ReadBytes(session / "session.json");
+  const auto demo_bytes = ReadBytes(session / "episodes" / "demo_1.h5");
+
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--layout wide --demos 2", "the session records layout 'paper' but 'wide' was asked for"},
+      {"--demos 3", "--demos 3: the tabletop paper layout records 2 demonstrations per "
+                    "configuration"},
+      {"--noise 0.02 --demos 2", "--noise is fixed when a session is created"},
+      {"--demo-noise 0 --demos 2", "--demo-noise is fixed when a session is created"},
+  };
+  for (const auto& c : cases) {
+    r = Record(session, c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(c.message)) << c.args;
+    EXPECT_EQ(ReadBytes(session / "session.json"), before) << c.args;
+    EXPECT_FALSE(fs::exists(session / "episodes" / "demo_2.h5")) << c.args;
+  }
+  EXPECT_EQ(ReadBytes(session / "episodes" / "demo_1.h5"), demo_bytes);
+
+  // A new session: an unknown layout, or one on a world without layouts, is named.
+  r = Record(Path("u"), "--world tabletop --layout diagonal --demos 2 --no-calibration");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--layout 'diagonal' does not exist; valid: paper, wide"));
+  EXPECT_FALSE(fs::exists(Path("u") / "session.json"));
+  r = Record(Path("v"), "--world dynamic2d --layout paper --demos 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("the dynamic2d world has no layouts"));
+}
+
 }  // namespace

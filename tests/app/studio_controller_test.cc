@@ -267,7 +267,10 @@ TEST_F(StudioControllerTest, AStudioDemonstrationIsReproducibleFromItsSeed) {
   const store::DemoRecord stored = opened.ReadDemo(opened.demos()[0].name);
   auto world = cli::MakeSessionWorld(opened.manifest(), opened.manifest().placement);
   teach::DemoRecorder recorder(*world, teach::ScriptedTeacher, "scripted-teleop");
-  recorder.Start(stored.meta.seed);
+  // demo_0 is the first take of configuration 0, with the session's injected noise.
+  recorder.SetActionNoise(opened.manifest().demo_noise_sigma);
+  teach::StartSessionDemo(recorder, *world, opened.manifest().seed, 0);
+  EXPECT_EQ(opened.demos()[0].meta.seed, stored.meta.seed);
   while (recorder.Tick()) {
   }
   const store::DemoRecord fresh = recorder.Take();

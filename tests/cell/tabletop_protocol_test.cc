@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "devices/render/mujoco_renderer.h"
@@ -161,6 +162,64 @@ TEST(TabletopProtocolTest, TheGripperHoldsTheToastOnlyWhereAParallelGripperWould
     world->arm().CommandGripper(true);
     EXPECT_EQ(world->arm().HeldObject() >= 0, c.held);
   }
+}
+
+TEST(TabletopProtocolTest, FingersCloseAtTheirSpeedAndCatchWhatComesBetweenThem) {
+  auto world = MakeTabletop("paper", 0.0, "none");
+  world->Reset(2);
+  const Eigen::Vector3d toast = world->ToastPosition();
+  // Close 1 cm above the slice (outside the window), then bring the tips down into it while the
+  // fingers are still on their way: the slice is caught.
+  auto above = world->arm().SolveGraspIk(toast + Eigen::Vector3d(0, 0, 0.01), 0.0, Ur5Arm::kHome);
+  auto at = world->arm().SolveGraspIk(toast, 0.0, Ur5Arm::kHome);
+  ASSERT_TRUE(above && at);
+  world->arm().Reset(*above);
+  world->arm().CommandGripper(true);
+  EXPECT_LT(world->arm().HeldObject(), 0);
+  EXPECT_TRUE(world->arm().FingersClosing());
+  world->arm().Step(0.1);
+  // 50 mm/s: after 0.1 s the fingers have moved 5 of their 60 mm, the opening shows it.
+  EXPECT_NEAR(world->arm().GripperOpening(), 55.0 / 60.0, 0.03);
+  EXPECT_LT(world->arm().HeldObject(), 0);
+  // Down into the window in 0.2 s, the fingers still closing.
+  Ur5Joints qd;
+  for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = ((*at)[i] - (*above)[i]) / 0.2;
+  world->arm().CommandJointVelocities(qd);
+  world->arm().Step(0.25);
+  EXPECT_GE(world->arm().HeldObject(), 0) << "caught on the way in";
+
+  // Closed on nothing: once the fingers have arrived, bringing the slice between them no longer
+  // helps.
+  world->Reset(2);
+  world->arm().Reset(*above);
+  world->arm().CommandGripper(true);
+  for (int i = 0; i < 8; ++i) world->arm().Step(0.1);
+  EXPECT_FALSE(world->arm().FingersClosing());
+  EXPECT_LT(world->arm().HeldObject(), 0);
+}
+
+TEST(TabletopProtocolTest, OutcomeDetailsTellWhetherAndHowTheGraspHappened) {
+  auto world = MakeTabletop("paper", 0.0, "none");
+  world->Reset(205);
+  std::map<std::string, double> d = world->OutcomeDetails();
+  EXPECT_EQ(d.at("grasped"), 0.0);
+  EXPECT_GT(d.at("closest_approach_m"), 0.2) << "the arm starts at home, far above the toast";
+  for (int t = 0; t < world->EpisodeLength(); ++t) world->Step(world->ExpertAction());
+  d = world->OutcomeDetails();
+  EXPECT_EQ(d.at("grasped"), 1.0);
+  EXPECT_LT(d.at("closest_approach_m"), 0.01);
+  EXPECT_LE(d.at("closes_on_nothing"), 1.0);
+  // A policy that shuts the gripper in the air and never comes down.
+  world->Reset(205);
+  for (int t = 0; t < 20; ++t) {
+    std::vector<float> u(7, 0.0f);
+    u[6] = t % 4 < 2 ? 1.0f : 0.0f;  // close, open, close, ...
+    world->Step(u);
+  }
+  d = world->OutcomeDetails();
+  EXPECT_EQ(d.at("grasped"), 0.0);
+  EXPECT_EQ(d.at("closes_on_nothing"), 5.0);
+  EXPECT_GT(d.at("closest_approach_m"), 0.2);
 }
 
 TEST(TabletopProtocolTest, TheExpertSucceedsInEveryLayoutOfBothKinds) {

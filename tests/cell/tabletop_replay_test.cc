@@ -68,8 +68,11 @@ TEST(TabletopReplayTest, ShownStateRedrawsTheFrameOfItsStep) {
 
   // The viewer's world starts in another scenario, so everything shown must come from the state.
   auto viewer = MakeTabletop();
-  viewer->Reset(7);
-  ASSERT_GT((viewer->PlatePosition() - frames[0].plate).norm(), 0.01);
+  uint64_t viewer_seed = 7;  // the first seed from 7 on whose plate is on the other side
+  do {
+    viewer->Reset(viewer_seed++);
+  } while ((viewer->PlatePosition() - frames[0].plate).norm() < 0.1);
+  ASSERT_GT((viewer->PlatePosition() - frames[0].plate).norm(), 0.1);
   // Reset, mid-carry (the toast moves with the gripper), just after the release, and the end.
   const int carry = held_steps[held_steps.size() / 2];
   const std::vector<int> checked = {0, 5, carry, held_steps.back() + 1, world->EpisodeLength()};

@@ -7,7 +7,7 @@ recon="$1"
 check="$(cd "$(dirname "$0")" && pwd)/robomimic_reader_check.py"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$recon" record --session "$work/s" --world tabletop --image-size 32 --demos 3 --play 10 \
+"$recon" record --session "$work/s" --world tabletop --layout wide --image-size 32 --demos 3 --play 10 \
   --seed 2 --no-calibration >/dev/null 2>&1
 "$recon" session mark "$work/s" demo_2 --split valid >/dev/null
 "$recon" session mark "$work/s" demo_1 --bad >/dev/null

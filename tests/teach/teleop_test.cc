@@ -86,8 +86,9 @@ TEST(CartesianTeleop, ATeleoperatedDemonstrationSucceedsAndIsRecorded) {
     bool close;
   };
   const std::vector<Waypoint> plan = {{toast + Eigen::Vector3d(0, 0, 0.12), false},
-                                      {toast, false},
-                                      {toast, true},
+                                      // Down onto the slice, pressing toward the table.
+                                      {toast - Eigen::Vector3d(0, 0, 0.004), false},
+                                      {toast - Eigen::Vector3d(0, 0, 0.004), true},
                                       {toast + Eigen::Vector3d(0, 0, 0.12), true},
                                       {plate + Eigen::Vector3d(0, 0, 0.12), true},
                                       {plate + Eigen::Vector3d(0, 0, 0.05), true},
@@ -99,10 +100,11 @@ TEST(CartesianTeleop, ATeleoperatedDemonstrationSucceedsAndIsRecorded) {
     const Eigen::Vector3d error = plan[next].at - world->arm().GripPosition();
     Eigen::Vector3d v = 2.0 * error;
     if (v.norm() > 0.15) v *= 0.15 / v.norm();
-    command.velocity_m_s = error.norm() < 0.004 ? Eigen::Vector3d::Zero() : v;
+    command.velocity_m_s = error.norm() < 0.002 ? Eigen::Vector3d::Zero() : v;
     command.close_gripper = plan[next].close;
-    // A waypoint is reached when near it; a gripper change also waits a few steps.
-    if (error.norm() < 0.01 && ++dwell >= 3) {
+    // A waypoint is reached when near it; a person waits there for the gripper (its fingers
+    // take up to 0.6 s to close on the slice).
+    if (error.norm() < 0.01 && ++dwell >= 8) {
       ++next;
       dwell = 0;
     }
