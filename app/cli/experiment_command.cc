@@ -58,9 +58,9 @@ struct ExperimentFlags {
   std::string layout = "paper";
   std::string observation = "image";
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
-  double demo_noise = 0.0;  ///< only when --demo-noise is given; else the world's default
-  int random_shift = -1;  ///< -1: the world's recipe
-  int action_chunk = -1;  ///< -1: the world's recipe
+  double demo_noise = 0.0;          ///< only when --demo-noise is given; else the world's default
+  int random_shift = -1;            ///< -1: the world's recipe
+  int action_chunk = -1;            ///< -1: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
   bool standardize_inputs = false;  ///< likewise
 };
@@ -88,13 +88,15 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     if (flags.observation == "state") {
       config.world = "tabletop-state";
     } else if (flags.observation != "image") {
-      throw UserError("--observation must be 'image' (the camera) or 'state' (the objects' true "
-                      "positions, a diagnostic); got '" + flags.observation + "'");
+      throw UserError(
+          "--observation must be 'image' (the camera) or 'state' (the objects' true "
+          "positions, a diagnostic); got '" +
+          flags.observation + "'");
     }
     const std::vector<std::string> layouts = worlds::WorldLayouts(flags.world);
     if (std::find(layouts.begin(), layouts.end(), flags.layout) == layouts.end()) {
-      throw UserError("--layout '" + flags.layout + "' does not exist; valid: " +
-                      JoinNames(layouts));
+      throw UserError("--layout '" + flags.layout +
+                      "' does not exist; valid: " + JoinNames(layouts));
     }
     config.cell.layout = flags.layout;
     if (!std::isfinite(flags.beacon_noise) || flags.beacon_noise < 0 ||
@@ -295,8 +297,9 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
                    "the world's recipe)")
       ->check(CLI::Range(1, 100));
-  command->add_flag("--spatial-softmax,!--no-spatial-softmax", flags->spatial_softmax,
-                    "end the CNN in a spatial-softmax keypoint layer (default: the world's recipe)");
+  command->add_flag(
+      "--spatial-softmax,!--no-spatial-softmax", flags->spatial_softmax,
+      "end the CNN in a spatial-softmax keypoint layer (default: the world's recipe)");
   command->add_flag("--standardize-inputs,!--no-standardize-inputs", flags->standardize_inputs,
                     "standardise the robot state x (and a vector y) per dimension (default: the "
                     "world's recipe)");
@@ -315,10 +318,9 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
         ->add_option("--noise", flags->beacon_noise,
                      "beacon noise sigma per axis, metres (default: a DWM1001's; 0 = exact)")
         ->capture_default_str();
-    command
-        ->add_option("--demo-noise", flags->demo_noise,
-                     "noise injected into the executed joint velocities while demonstrating "
-                     "(DART), rad/s; 0 = off (default: 0.05)");
+    command->add_option("--demo-noise", flags->demo_noise,
+                        "noise injected into the executed joint velocities while demonstrating "
+                        "(DART), rad/s; 0 = off (default: 0.05)");
     command
         ->add_option("--observation", flags->observation,
                      "image (the camera) or state (the objects' true positions: a diagnostic of "

@@ -108,8 +108,8 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
     } else {
       setup.layout = flags.layout.empty() ? layouts.front() : flags.layout;
       if (std::find(layouts.begin(), layouts.end(), setup.layout) == layouts.end()) {
-        throw UserError("--layout '" + setup.layout + "' does not exist; valid: " +
-                        JoinNames(layouts));
+        throw UserError("--layout '" + setup.layout +
+                        "' does not exist; valid: " + JoinNames(layouts));
       }
     }
     setup.beacon_noise_sigma =
@@ -135,14 +135,16 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
         throw UserError("--demos " + std::to_string(flags.demos) + ": the " + setup.world_name +
                         " " + setup.layout + " layout records " + std::to_string(n) +
                         " demonstrations per configuration, and the session would end with "
-                        "configuration " + std::to_string(last / n) + " having " +
-                        std::to_string((last + 1) % n) + " of them; record " +
-                        std::to_string(flags.demos + n - (last + 1) % n) + " instead");
+                        "configuration " +
+                        std::to_string(last / n) + " having " + std::to_string((last + 1) % n) +
+                        " of them; record " + std::to_string(flags.demos + n - (last + 1) % n) +
+                        " instead");
       }
       if (flags.demos > 0) {
-        std::printf("demonstrations demo_%d..demo_%d are takes of configurations %d..%d (%d per "
-                    "configuration: plate side and bowl place)\n",
-                    first, last, first / n, last / n, n);
+        std::printf(
+            "demonstrations demo_%d..demo_%d are takes of configurations %d..%d (%d per "
+            "configuration: plate side and bowl place)\n",
+            first, last, first / n, last / n, n);
       }
     }
   }

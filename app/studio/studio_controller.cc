@@ -102,8 +102,9 @@ class StudioController::Cell {
       probe.world = options_.world;
       probe.placement = teach::DefaultTeachingPlacement(options_.world);
       probe.image_size = options_.image_size;
+      // Simulated beacons' noise; real ones bring their own.
       probe.beacon_noise_sigma = options_.beacon_noise_sigma.value_or(
-          worlds::DefaultBeaconNoise(options_.world));
+          real_ ? 0.0 : worlds::DefaultBeaconNoise(options_.world));
       const std::vector<std::string> layouts = worlds::WorldLayouts(options_.world);
       probe.layout = layouts.empty() ? "" : options_.layout;
       made = real_ ? real_->MakeWorld(probe, "") : cli::MakeSessionWorld(probe, probe.placement);
@@ -114,8 +115,9 @@ class StudioController::Cell {
       setup.seed = options_.seed;
       setup.beacon_noise_sigma = probe.beacon_noise_sigma;
       setup.layout = probe.layout;
-      setup.demo_noise_sigma =
-          options_.demo_noise_sigma.value_or(worlds::DefaultDemoNoise(options_.world));
+      // A real arm is only perturbed when the teacher asks for it (--demo-noise).
+      setup.demo_noise_sigma = options_.demo_noise_sigma.value_or(
+          real_ ? 0.0 : worlds::DefaultDemoNoise(options_.world));
       store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
       if (real_) real_->DescribeInto(manifest);
       opened.emplace(store::Session::Create(dir, manifest));

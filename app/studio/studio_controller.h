@@ -29,7 +29,8 @@ struct StudioOptions {
   std::optional<double> beacon_noise_sigma;
   /// New sessions' tabletop layout ("paper" or "wide").
   std::string layout = "paper";
-  /// New sessions' demonstration noise (DART, rad/s; 0 = off); unset: the world's default.
+  /// New sessions' demonstration noise (DART, rad/s; 0 = off); unset: the world's default in the
+  /// simulated cell, off on real hardware.
   std::optional<double> demo_noise_sigma;
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).

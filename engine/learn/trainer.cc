@@ -144,11 +144,11 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
   // With a chunk of k actions the head's loss sums k actions' terms: per action (divided by k)
   // it weighs against the beacon term as a single action does.
   const float chunk = static_cast<float>(network_.action_chunk);
-  m.action_loss = HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(),
-                           batch, arch_.action_width(),
-                           static_cast<float>(train_.action_weight) / chunk,
-                           grad_policy_head_.data()) /
-                  chunk;
+  m.action_loss =
+      HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(), batch,
+               arch_.action_width(), static_cast<float>(train_.action_weight) / chunk,
+               grad_policy_head_.data()) /
+      chunk;
   if (arch_.has_beacon_net()) {
     ForwardBeacon(arch_, params, demo_);
     m.beacon_loss =
@@ -265,9 +265,9 @@ TrainingErrors TrainerImpl::Evaluate() {
     }
     ForwardFeatures(arch_, params, eval_);
     ForwardPolicy(arch_, params, eval_);
-    action_sum += SumSquaredMeanError(eval_.policy_head(),
-                                      data_.demo_u.data() + begin * arch_.action_width(), count,
-                                      arch_.action_width());
+    action_sum +=
+        SumSquaredMeanError(eval_.policy_head(), data_.demo_u.data() + begin * arch_.action_width(),
+                            count, arch_.action_width());
     if (arch_.has_beacon_net()) {
       ForwardBeacon(arch_, params, eval_);
       beacon_sum += SumSquaredMeanError(eval_.beacon_head(), data_.demo_b.data() + begin * s.b_dim,

@@ -169,8 +169,8 @@ std::optional<double> Ur5Arm::GraspOffset(int object) const {
   // The gripper's axes in the world: x closes the fingers, y runs along their faces, z points out
   // of the tool (down, toward the table, when it points down).
   const mjtNum* rg = d->site_xmat + 9 * grip_site_;
-  const Eigen::Vector3d axis[3] = {{rg[0], rg[3], rg[6]}, {rg[1], rg[4], rg[7]},
-                                   {rg[2], rg[5], rg[8]}};
+  const Eigen::Vector3d axis[3] = {
+      {rg[0], rg[3], rg[6]}, {rg[1], rg[4], rg[7]}, {rg[2], rg[5], rg[8]}};
   const mjtNum* p = d->xpos + 3 * object;
   const Eigen::Vector3d offset = Eigen::Vector3d(p[0], p[1], p[2]) - GripPosition();
   // The object's half-extent along each gripper axis: the support of its boxes (or spheres and
@@ -202,8 +202,8 @@ std::optional<double> Ur5Arm::GraspOffset(int object) const {
   // The pads reach from the tips (the grip point) kFingerPadLength_m back toward the flange
   // (-z): the object's extent along z must overlap them by kMinPadOverlap_m (a thin slice is
   // only held when the tips come down close to the table).
-  const double overlap = std::min(0.0, along_tool + half[2]) -
-                         std::max(-kFingerPadLength_m, along_tool - half[2]);
+  const double overlap =
+      std::min(0.0, along_tool + half[2]) - std::max(-kFingerPadLength_m, along_tool - half[2]);
   if (overlap < std::min(kMinPadOverlap_m, 2 * half[2])) return std::nullopt;
   return offset.norm();
 }

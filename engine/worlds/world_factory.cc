@@ -19,8 +19,8 @@ namespace {
 }  // namespace
 
 const std::vector<std::string>& WorldNames() {
-  static const std::vector<std::string> kNames = {"dynamic2d", "dynamic2d-state", "static2d",
-                                                  "bintransfer", "tabletop", "tabletop-state"};
+  static const std::vector<std::string> kNames = {
+      "dynamic2d", "dynamic2d-state", "static2d", "bintransfer", "tabletop", "tabletop-state"};
   return kNames;
 }
 

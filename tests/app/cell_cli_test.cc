@@ -125,8 +125,8 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
       for (const char* key : {"success_rate", "distance", "sem", "n"}) {
         EXPECT_TRUE(block.contains(key)) << key;
       }
-      for (const char* key : {"grip_nearer_bowl", "grasped", "closest_approach_m",
-                              "closes_on_nothing"}) {
+      for (const char* key :
+           {"grip_nearer_bowl", "grasped", "closest_approach_m", "closes_on_nothing"}) {
         EXPECT_TRUE(block["details"].contains(key)) << key << ": " << block.dump();
       }
       EXPECT_GE(block["success_rate"].get<double>(), 0.0);
@@ -154,8 +154,9 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
     const char* message;
   } cases[] = {
       {"--layout diagonal", "--layout 'diagonal' does not exist; valid: paper, wide"},
-      {"--demos 4,5", "--demos 5: the tabletop world records 2 demonstrations per scene "
-                      "configuration"},
+      {"--demos 4,5",
+       "--demos 5: the tabletop world records 2 demonstrations per scene "
+       "configuration"},
       {"--noise -0.1", "--noise must be between 0 and 0.5 m"},
       {"--noise nan", "--noise"},
       {"--demo-noise 3", "--demo-noise must be between 0 and 1"},
@@ -173,7 +174,8 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
   // The wide layout has no configurations: an odd count is fine there (checked, not run).
   const CommandResult wide = RunRecon(
       "experiment tabletop --layout wide --runs 1 --tests 1 --demos 1 --steps 2 --baseline-steps 2 "
-      "--image-size 32 --conditions baseline --out " + (out / "wide").string());
+      "--image-size 32 --conditions baseline --out " +
+      (out / "wide").string());
   EXPECT_EQ(wide.exit_code, 0) << wide.output;
 }
 

@@ -212,10 +212,9 @@ TEST(CrashSafetyTest, KillNineWhileRecordingCameraEpisodes) {
   const std::unique_ptr<worlds::World> world =
       worlds::MakeWorld("tabletop", "plate", 0.0, false, cell);
   Reference reference{*world, 3};
-  const std::vector<std::string> args = {"record",   "--session",       dir.string(), "--world",
-                                         "tabletop", "--image-size",    "32",         "--demos",
-                                         "20",       "--play",          "20",         "--seed",
-                                         "3",        "--no-calibration",
+  const std::vector<std::string> args = {"record", "--session", dir.string(), "--world", "tabletop",
+                                         "--image-size", "32", "--demos", "20", "--play", "20",
+                                         "--seed", "3", "--no-calibration",
                                          // The reference below records one scenario per seed
                                          // with exact beacons and no injected noise.
                                          "--layout", "wide", "--noise", "0", "--demo-noise", "0"};

@@ -163,8 +163,9 @@ TEST_F(SessionCliTest, TabletopProtocolMismatchesAreRefusedAndChangeNothing) {
     const char* message;
   } cases[] = {
       {"--layout wide --demos 2", "the session records layout 'paper' but 'wide' was asked for"},
-      {"--demos 3", "--demos 3: the tabletop paper layout records 2 demonstrations per "
-                    "configuration"},
+      {"--demos 3",
+       "--demos 3: the tabletop paper layout records 2 demonstrations per "
+       "configuration"},
       {"--noise 0.02 --demos 2", "--noise is fixed when a session is created"},
       {"--demo-noise 0 --demos 2", "--demo-noise is fixed when a session is created"},
   };

@@ -106,7 +106,8 @@ TEST(ActionChunkingTest, BothBackendsScoreAChunkPerActionAlike) {
   train.backend = Backend::kFused;
   TrainerImpl single(data, network, train);
   single.Step();
-  EXPECT_LT(std::abs(fused.State().last.action_loss), 2.5 * std::abs(single.State().last.action_loss) + 1);
+  EXPECT_LT(std::abs(fused.State().last.action_loss),
+            2.5 * std::abs(single.State().last.action_loss) + 1);
 }
 
 }  // namespace

@@ -31,7 +31,9 @@ std::vector<float> NamedImage() {
   return image;
 }
 
-float At(const std::vector<float>& image, int c, int r, int k) { return image[(c * 3 + r) * 4 + k]; }
+float At(const std::vector<float>& image, int c, int r, int k) {
+  return image[(c * 3 + r) * 4 + k];
+}
 
 TEST(AugmentationTest, ShiftMovesThePixelsAndReplicatesTheBorder) {
   const std::vector<float> image = NamedImage();

@@ -179,8 +179,9 @@ TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
 // A few steps, not fifty: some of these runs are chaotic under rounding over a long horizon (the
 // authors' CNN on raw pixels with the NLL: our generic and vector kernels end 10% apart after 50
 // steps), so a long-horizon bound would pass or fail by the CPU's kernels, not by a defect.
-// Within kFewSteps the two backends must agree to float rounding on every CPU. (The long-horizon
-// spread is measured by bench/learn_bench, not asserted.)
+// Within kFewSteps the two backends must agree to float rounding on every CPU. A long-horizon
+// comparison is not asserted at all: over fifty steps it measures how chaotic a run is under
+// rounding, not whether either backend is right.
 constexpr int kFewSteps = 5;
 
 struct AfterFewSteps {
@@ -209,7 +210,8 @@ TEST(TorchBackendTest, FirstStepsStayCloseToTheFusedBackend) {
       // Adam's first updates are about lr * sign(g) per weight: rounding can flip the sign of a
       // near-zero gradient, which moves that weight by at most 2 lr per step and the loss by
       // far less than 1e-3 of its size.
-      EXPECT_NEAR(torch.losses[i], fused.losses[i], 1e-3 * std::max(1.0f, std::abs(fused.losses[i])))
+      EXPECT_NEAR(torch.losses[i], fused.losses[i],
+                  1e-3 * std::max(1.0f, std::abs(fused.losses[i])))
           << "step " << i;
     }
     EXPECT_LE(MaxAbsDiff(torch.probe, fused.probe), 2e-3 * std::max(1.0, MaxAbs(fused.probe)));
