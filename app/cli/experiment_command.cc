@@ -45,6 +45,8 @@ struct ExperimentFlags {
   std::string backend = "fused";
   std::string targets;  ///< empty: the recipe's choice
   double learning_rate = 4e-4;
+  double beacon_weight = 1.0;  ///< only when --beacon-weight is given
+  double play_weight = 1.0;    ///< only when --play-weight is given
   int steps = 6001;
   int baseline_steps = 3001;
   int batch = 20;
@@ -131,6 +133,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   if (use("--steps")) config.train.steps = flags.steps;
   if (use("--batch")) config.train.batch_size = flags.batch;
   if (use("--restart")) config.train.restart_rule = flags.restart;
+  if (command.get_option("--beacon-weight")->count() > 0) {
+    config.train.beacon_weight = flags.beacon_weight;
+  }
+  if (command.get_option("--play-weight")->count() > 0) config.train.play_weight = flags.play_weight;
   config.train.backend = learn::ParseBackend(flags.backend);
   if (flags.targets == "standardized") {
     config.train.standardize_targets = true;
@@ -277,6 +283,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                       "standardized or raw action/beacon targets (default: standardized, raw "
                       "with --authors-recipe)");
   command->add_option("--lr", flags->learning_rate, "Adam learning rate")->capture_default_str();
+  command->add_option("--beacon-weight", flags->beacon_weight,
+                      "weight of RECON's beacon term (default 1, the paper; 1.2 with "
+                      "--authors-recipe)");
+  command->add_option("--play-weight", flags->play_weight,
+                      "weight of RECON's play term (default 1, the paper; 1.2 with "
+                      "--authors-recipe)");
   command->add_option("--steps", flags->steps, "training steps with beacons")
       ->capture_default_str();
   command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")

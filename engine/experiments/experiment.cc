@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/core/rng.h"
@@ -51,6 +52,15 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
   if (config.play_per_scenario < -1) throw UserError("--play must not be negative");
   if (config.train.steps <= 0 || config.baseline_steps <= 0) {
     throw UserError("--steps and --baseline-steps must be positive");
+  }
+  for (const auto& [weight, option] :
+       {std::pair{config.train.beacon_weight, "--beacon-weight"},
+        std::pair{config.train.play_weight, "--play-weight"},
+        std::pair{config.train.action_weight, "the action weight"}}) {
+    if (!std::isfinite(weight) || weight < 0) {
+      throw UserError(std::string(option) + " must be a finite number >= 0 (got " +
+                      FormatNumber(weight) + ")");
+    }
   }
   if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 || config.demo_noise > 1.0) {
     throw UserError("--demo-noise must be between 0 and 1 (action units, rad/s for the arm; got " +

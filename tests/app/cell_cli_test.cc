@@ -163,6 +163,8 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--observation depth", "--observation must be 'image'"},
       {"--random-shift 40", "--random-shift"},
       {"--action-chunk 0", "--action-chunk"},
+      {"--beacon-weight -1", "--beacon-weight must be a finite number >= 0"},
+      {"--play-weight nan", "--play-weight must be a finite number >= 0"},
   };
   for (const auto& c : cases) {
     const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +
