@@ -90,13 +90,16 @@ double SecondsOfOneRun(std::vector<std::string> record_args, const fs::path& scr
 template <typename ExpectedDemo, typename ExpectedPlay>
 void KillRepeatedly(const fs::path& dir, const std::vector<std::string>& record_args, int kills,
                     double min_s, double max_s, uint64_t seed, const ExpectedDemo& expected_demo,
-                    const ExpectedPlay& expected_play, KillStats& stats) {
+                    const ExpectedPlay& expected_play, KillStats& stats,
+                    int min_mid_commit = 0) {
   Rng rng(seed);
   std::set<std::string> committed;  // names seen after earlier kills: they must survive
   // Episodes whose data was compared with the reference. Recording never rewrites a committed
   // file, so each is compared when it first appears and once more after the last kill.
   std::set<std::string> verified;
-  for (int k = 0; k < kills; ++k) {
+  // Where a kill lands depends on the machine's load: past `kills`, keep killing (up to three
+  // times as often) until `min_mid_commit` of them have hit a commit in progress.
+  for (int k = 0; k < kills || (stats.mid_commit < min_mid_commit && k < 3 * kills); ++k) {
     const pid_t pid = Spawn(record_args);
     const double delay_s = rng.Uniform(min_s, max_s);
     std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
@@ -190,7 +193,8 @@ TEST(CrashSafetyTest, KillNineWhileRecordingLosesAtMostTheEpisodeInProgress) {
       dir, args,
       /*kills=*/30, 0.55 * run_s, 1.1 * run_s, /*seed=*/0xC4A5,
       [&](int n) -> const Episode& { return reference.Demo(n); },
-      [&](int n, int64_t size) { return reference.Play(n, size); }, stats);
+      [&](int n, int64_t size) { return reference.Play(n, size); }, stats,
+      /*min_mid_commit=*/3);
   std::printf(
       "dynamic2d: %d kills, %d in the middle of a commit; %d demonstrations and %d play "
       "chunks committed and intact (a whole run took %.2f s; kill delays seeded 0xC4A5)\n",
