@@ -118,7 +118,20 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
        {config.train.action_weight, config.train.beacon_weight, config.train.play_weight}},
       {"restart_rule", config.train.restart_rule},
       {"standardize_targets", config.train.standardize_targets},
+      {"standardize_inputs", config.train.standardize_inputs},
+      {"random_shift_px", config.train.random_shift_px},
       {"play_per_scenario", config.play_per_scenario}};
+  json network = {{"feature_dim", config.network.feature_dim},
+                  {"policy_hidden", config.network.policy_hidden},
+                  {"spatial_softmax", config.network.spatial_softmax},
+                  {"action_chunk", config.network.action_chunk}};
+  json beacon_noise = json::object();
+  for (const Condition& c : config.conditions) beacon_noise[c.name] = c.noise_sigma;
+  // What the demonstrations were recorded under (docs/cell.md).
+  json protocol = {{"layout", config.cell.layout},
+                   {"demo_noise", config.demo_noise},
+                   {"demo_noise_seeds", "DemoNoiseSeed(seed, run)"},
+                   {"beacon_noise", beacon_noise}};
   json seeds = {{"seed", config.seed},
                 {"demo_scenarios", "DemoScenarioSeed(seed, run, index)"},
                 {"training", "TrainSeed(seed, run)"},
@@ -138,6 +151,8 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
           {"authors_compat", config.authors_compat},
           {"jobs", config.jobs},
           {"train", train},
+          {"network", network},
+          {"protocol", protocol},
           {"wall_seconds", result.wall_seconds}};
 }
 

@@ -133,6 +133,12 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
       EXPECT_LE(block["success_rate"].get<double>(), 1.0);
     }
   }
+  // The protocol and the recipe's levers are in the summary, so a run can be repeated.
+  EXPECT_EQ(summary["protocol"]["layout"], "paper");
+  EXPECT_DOUBLE_EQ(summary["protocol"]["demo_noise"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(summary["protocol"]["beacon_noise"]["recon-play"].get<double>(), 0.07);
+  EXPECT_EQ(summary["network"]["action_chunk"], 10);
+  EXPECT_EQ(summary["train"]["random_shift_px"], 4);
   const auto& time = summary["teaching_time"];
   // The scripted teacher takes about 13.5 s (the paper's people took 16.6 s).
   const double per_demo = time["seconds_per_demonstration"].get<double>();
