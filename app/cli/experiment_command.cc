@@ -95,12 +95,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
           "positions, a diagnostic); got '" +
           flags.observation + "'");
     }
-    const std::vector<std::string> layouts = worlds::WorldLayouts(flags.world);
-    if (std::find(layouts.begin(), layouts.end(), flags.layout) == layouts.end()) {
-      throw UserError("--layout '" + flags.layout +
-                      "' does not exist; valid: " + JoinNames(layouts));
-    }
-    config.cell.layout = flags.layout;
+    config.cell.layout = worlds::ChooseLayout(flags.world, flags.layout, "--layout");
     if (!std::isfinite(flags.beacon_noise) || flags.beacon_noise < 0 ||
         flags.beacon_noise > worlds::Tabletop::kMaxBeaconNoise_m) {
       throw UserError("--noise must be between 0 and " +

@@ -1,6 +1,5 @@
 #include "app/cli/record_command.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -100,18 +99,7 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
         flags.placement.empty() ? teach::DefaultTeachingPlacement(flags.world) : flags.placement;
     setup.image_size = flags.image_size;
     setup.seed = flags.seed;
-    const std::vector<std::string> layouts = worlds::WorldLayouts(flags.world);
-    if (layouts.empty()) {
-      if (!flags.layout.empty()) {
-        throw UserError("--layout: the " + flags.world + " world has no layouts");
-      }
-    } else {
-      setup.layout = flags.layout.empty() ? layouts.front() : flags.layout;
-      if (std::find(layouts.begin(), layouts.end(), setup.layout) == layouts.end()) {
-        throw UserError("--layout '" + setup.layout +
-                        "' does not exist; valid: " + JoinNames(layouts));
-      }
-    }
+    setup.layout = worlds::ChooseLayout(flags.world, flags.layout, "--layout");
     setup.beacon_noise_sigma =
         command.count("--noise") > 0 ? flags.noise : worlds::DefaultBeaconNoise(flags.world);
     setup.demo_noise_sigma = command.count("--demo-noise") > 0

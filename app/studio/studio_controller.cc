@@ -1,7 +1,6 @@
 #include "app/studio/studio_controller.h"
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -477,13 +476,7 @@ class StudioController::Cell {
     teleop_input_ = {};
     teleop_command_ = {};
     recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
-    const store::SessionManifest& m = session_->manifest();
-    recorder_->SetActionNoise(m.demo_noise_sigma);
-    if (store::Session::ScenarioSeed(m.seed, number, false) == seed) {
-      teach::StartSessionDemo(*recorder_, *world_, m.seed, number);
-    } else {
-      recorder_->Start(seed);  // recorded from another seed: its own scenario
-    }
+    teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
   }
 
   void Commit() {
@@ -561,7 +554,7 @@ class StudioController::Cell {
     RequireIdle("re-record");
     RequireNoEmergencyStop("re-record");
     const store::EpisodeEntry& e = session_->Find(c.name);
-    StartDemo(std::atoi(c.name.c_str() + 5), e.meta.seed);
+    StartDemo(e.number, e.meta.seed);
     replace_ = c.name;
     status_ = "Re-recording " + c.name + ".";
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
@@ -26,6 +25,16 @@ void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64
   const int configuration = number / n;
   recorder.StartTake(seed, store::Session::ScenarioSeed(session_seed, configuration * n, false),
                      configuration);
+}
+
+void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
+                      const store::SessionManifest& manifest, int number, uint64_t seed) {
+  recorder.SetActionNoise(manifest.demo_noise_sigma);
+  if (store::Session::ScenarioSeed(manifest.seed, number, false) == seed) {
+    StartSessionDemo(recorder, world, manifest.seed, number);
+  } else {
+    recorder.Start(seed);
+  }
 }
 
 TeacherAction ScriptedTeacher(const worlds::World& world) { return {world.ExpertAction(), false}; }
@@ -162,14 +171,7 @@ const store::EpisodeEntry& ReRecordDemo(store::Session& session, worlds::World& 
                     old.problem + ")");
   }
   DemoRecorder recorder(world, ScriptedTeacher, "scripted-teleop");
-  recorder.SetActionNoise(session.manifest().demo_noise_sigma);
-  const int number = std::atoi(old.name.c_str() + 5);
-  if (world.DemosPerConfiguration() > 1 &&
-      store::Session::ScenarioSeed(session.manifest().seed, number, false) == old.meta.seed) {
-    StartSessionDemo(recorder, world, session.manifest().seed, number);
-  } else {
-    recorder.Start(old.meta.seed);  // a take recorded from another seed: its own scenario
-  }
+  StartSessionTake(recorder, world, session.manifest(), old.number, old.meta.seed);
   while (recorder.Tick()) {
   }
   return session.CommitDemo(recorder.Take(), name);

@@ -71,6 +71,13 @@ class DemoRecorder {
 void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64_t session_seed,
                       int number);
 
+/// Starts demo_<number> of the session `manifest` describes, a new take or one recorded again,
+/// with the session's injected noise: in its configuration's scene (StartSessionDemo) when
+/// `seed` is the session's scenario seed for that number, else in scenario `seed` alone (a take
+/// recorded with another --seed).
+void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
+                      const store::SessionManifest& manifest, int number, uint64_t seed);
+
 /// Draws one scenario's worth of play data (World::PlaySamplesPerScenario samples, or `count`
 /// if positive) from scenario `seed`.
 store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count = 0);

@@ -26,6 +26,20 @@ const std::vector<std::string>& WorldNames() {
 
 bool WorldNeedsRenderer(const std::string& name) { return name == "tabletop"; }
 
+std::string ChooseLayout(const std::string& world, const std::string& asked,
+                         const std::string& option) {
+  const std::vector<std::string> layouts = WorldLayouts(world);
+  if (layouts.empty()) {
+    if (!asked.empty()) throw UserError(option + ": the " + world + " world has no layouts");
+    return "";
+  }
+  if (asked.empty()) return layouts.front();
+  if (std::find(layouts.begin(), layouts.end(), asked) == layouts.end()) {
+    throw UserError(option + " '" + asked + "' does not exist; valid: " + JoinNames(layouts));
+  }
+  return asked;
+}
+
 double DefaultDemoNoise(const std::string& world) {
   return world == "tabletop" || world == "tabletop-state" ? 0.05 : 0.0;
 }

@@ -23,6 +23,12 @@ struct CellResources {
 /// Layouts a world offers ({"paper", "wide"} for tabletop, empty for the others).
 std::vector<std::string> WorldLayouts(const std::string& world);
 
+/// The layout a new session or experiment of `world` uses when `asked` (empty: the world's
+/// first, or "" for a world without layouts). UserError naming `option` for a layout the world
+/// does not offer, or any layout for a world without them.
+std::string ChooseLayout(const std::string& world, const std::string& asked,
+                         const std::string& option);
+
 /// The beacon noise a new session or experiment of `world` records with unless told otherwise:
 /// a real DWM1001's for the tabletop (the paper's real beacon), 0 for the others.
 double DefaultBeaconNoise(const std::string& world);
