@@ -184,9 +184,10 @@ int main(int argc, char** argv) {
                  "a UR controller the Cell screen lists (host or host:port; repeatable)");
   app.add_flag("--fast", flags.fast,
                "record demonstrations as fast as the simulation runs (default: 10 Hz, real time)");
-  app.add_option("--train-steps", flags.options.train_steps, "training steps per method")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  app.add_option("--train-steps", flags.options.train_steps,
+                 "training steps per method (default: the world's recipe: 15000 on the "
+                 "tabletop)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();

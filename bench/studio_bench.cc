@@ -129,6 +129,47 @@ BENCHMARK(BM_StudioFramePlayingRollouts)
     ->UseRealTime()
     ->MinTime(2.0);
 
+// What a teacher waits for between "Train Baseline and RECON" and "Rollouts done": both methods
+// trained with the world's recipe on 4 demonstrations and 40 play samples (the paper's robot
+// experiment), then rolled out on the studio's 10 test scenes. Target: at most 90 s on 2 cores.
+void BM_StudioTrainToRolloutsFourDemos(benchmark::State& state) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("recon-studio-train-bench-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  recon::studio::StudioOptions options;
+  options.session_dir = (dir / "session").string();
+  options.recent_sessions_file = (dir / "recent.json").string();
+  options.real_time = false;
+  StudioController controller(options);
+  const auto wait_idle = [&] {
+    while (!controller.Idle()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  };
+  controller.Push(recon::ui::AssignBeacon{"plate", "plate"});
+  for (int i = 0; i < 4; ++i) {
+    controller.Push(recon::ui::StartRecording{});
+    wait_idle();
+  }
+  controller.Push(recon::ui::RecordPlay{40});
+  wait_idle();
+  for (auto _ : state) {
+    controller.Push(recon::ui::StartTraining{{"baseline", "recon"}});
+    wait_idle();
+    controller.Push(recon::ui::RunRollouts{options.rollout_tests});
+    wait_idle();
+  }
+  const recon::ui::StudioSnapshot snapshot = controller.Snapshot();
+  if (!snapshot.errors.empty()) state.SkipWithError(snapshot.errors.front().c_str());
+  for (const recon::ui::RolloutView& r : snapshot.rollouts) {
+    state.counters[r.method + "_success"] = r.success_rate;
+  }
+  fs::remove_all(dir);
+}
+BENCHMARK(BM_StudioTrainToRolloutsFourDemos)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1)
+    ->Repetitions(1);
+
 }  // namespace
 
 BENCHMARK_MAIN();

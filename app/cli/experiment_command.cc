@@ -122,10 +122,21 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   const auto use = [&](const char* option) {
     return !flags.authors_recipe || command.get_option(option)->count() > 0;
   };
-  if (flags.authors_recipe) config.train = learn::AuthorsRecipe();
+  const auto given = [&](const char* option) { return command.get_option(option)->count() > 0; };
+  // The world's recipe (recipe.h) for what the user did not set explicitly.
+  const experiments::WorldRecipe recipe =
+      experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
+  if (flags.authors_recipe) {
+    config.train = learn::AuthorsRecipe();
+  } else {
+    config.train.learning_rate = recipe.train.learning_rate;
+    config.train.steps = recipe.train.steps;
+    config.train.beacon_weight = recipe.train.beacon_weight;
+    config.train.play_weight = recipe.train.play_weight;
+  }
   if (use("--loss")) config.train.loss = learn::ParseLossKind(flags.loss);
-  if (use("--lr")) config.train.learning_rate = flags.learning_rate;
-  if (use("--steps")) config.train.steps = flags.steps;
+  if (given("--lr")) config.train.learning_rate = flags.learning_rate;
+  if (given("--steps")) config.train.steps = flags.steps;
   if (use("--batch")) config.train.batch_size = flags.batch;
   if (use("--restart")) config.train.restart_rule = flags.restart;
   if (command.get_option("--beacon-weight")->count() > 0) {
@@ -142,9 +153,6 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.baseline_steps = flags.baseline_steps;
   config.play_per_scenario = flags.play;
-  // The world's recipe (recipe.h) for what the user did not set explicitly.
-  const experiments::WorldRecipe recipe =
-      experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
   config.network.policy_hidden = recipe.network.policy_hidden;
   config.network.image_scale = recipe.network.image_scale;
   config.train.random_shift_px =
@@ -277,15 +285,18 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command->add_option("--targets", flags->targets,
                       "standardized or raw action/beacon targets (default: standardized, raw "
                       "with --authors-recipe)");
-  command->add_option("--lr", flags->learning_rate, "Adam learning rate")->capture_default_str();
+  command->add_option("--lr", flags->learning_rate,
+                      "Adam learning rate (default: the world's recipe: 0.0004, the authors'; "
+                      "tabletop 0.001)");
   command->add_option("--beacon-weight", flags->beacon_weight,
-                      "weight of RECON's beacon term (default 1, the paper; 1.2 with "
-                      "--authors-recipe)");
+                      "weight of RECON's beacon term (default: the world's recipe: 1, the "
+                      "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)");
   command->add_option("--play-weight", flags->play_weight,
-                      "weight of RECON's play term (default 1, the paper; 1.2 with "
-                      "--authors-recipe)");
-  command->add_option("--steps", flags->steps, "training steps with beacons")
-      ->capture_default_str();
+                      "weight of RECON's play term (default: the world's recipe: 1, the "
+                      "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)");
+  command->add_option("--steps", flags->steps,
+                      "training steps with beacons (default: the world's recipe: 6001, the "
+                      "authors'; tabletop 15000)");
   command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")
       ->capture_default_str();
   command->add_option("--batch", flags->batch, "batch size")->capture_default_str();

@@ -66,6 +66,16 @@ double ActionMse(const learn::Policy& policy, const Dataset& data) {
 
 }  // namespace
 
+SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
+                                          SessionTrainingOptions options) {
+  const store::SessionManifest& m = session.manifest();
+  const experiments::WorldRecipe recipe =
+      experiments::RecipeForWorld(m.world, m.y_encoding == "uint8");
+  if (options.steps == 0) options.steps = recipe.train.steps;
+  if (options.learning_rate == 0.0) options.learning_rate = recipe.train.learning_rate;
+  return options;
+}
+
 json TrainSessionMethod(const store::Session& session, const std::string& method,
                         const SessionTrainingOptions& flags,
                         const std::function<void(const TrainingProgress&)>& on_progress,
@@ -94,9 +104,10 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
   learn::TrainConfig train = recipe.train;
   train.method = learn::ParseMethod(method);
   train.loss = learn::ParseLossKind(flags.loss);
-  train.steps = flags.steps;
+  const SessionTrainingOptions resolved = WithRecipeDefaults(session, flags);
+  train.steps = resolved.steps;
   train.batch_size = flags.batch;
-  train.learning_rate = flags.learning_rate;
+  train.learning_rate = resolved.learning_rate;
   train.seed = seed;
   learn::Trainer trainer(data, network, train);
 
@@ -157,7 +168,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"seed", seed},
       {"loss", flags.loss},
       {"batch", flags.batch},
-      {"learning_rate", flags.learning_rate},
+      {"learning_rate", resolved.learning_rate},
       {"feature_dim", flags.feature_dim},
       {"train_demos", data.demos.size()},
       {"train_samples", data.NumDemoSamples()},

@@ -13,9 +13,9 @@ namespace recon::cli {
 
 /// How `recon train` and the studio train a method on a session (the world's recipe otherwise).
 struct SessionTrainingOptions {
-  int steps = 6001;
+  int steps = 0;               ///< 0: the world's recipe (WithRecipeDefaults)
   int batch = 20;
-  double learning_rate = 4e-4;
+  double learning_rate = 0.0;  ///< 0: the world's recipe (WithRecipeDefaults)
   int feature_dim = 6;
   uint64_t seed = 0;
   std::string loss = "nll";
@@ -31,6 +31,11 @@ struct TrainingProgress {
   int steps = 0;
   learn::StepMetrics latest;  ///< losses averaged over the last window
 };
+
+/// `options` with the steps and learning rate it leaves at 0 taken from the session's world's
+/// recipe (experiments/recipe.h), so that a session trains as the experiments do.
+SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
+                                          SessionTrainingOptions options);
 
 /// Trains `method` ("baseline" or "recon") on the session's training split, then writes
 /// checkpoints/<method>.ckpt and training/<method>.json (recipe, seed, final losses, train and

@@ -621,7 +621,10 @@ class StudioController::Cell {
   void Apply(const ui::StartTraining& c) {
     RequireIdle("train");
     cli::SessionTrainingOptions training;
-    training.steps = c.steps > 0 ? std::min(c.steps, options_.train_steps) : options_.train_steps;
+    // --train-steps caps what the screen asks for; 0 leaves both to the world's recipe.
+    training.steps = options_.train_steps;
+    if (c.steps > 0) training.steps = training.steps > 0 ? std::min(c.steps, training.steps) : c.steps;
+    training = cli::WithRecipeDefaults(*session_, training);
     training.seed = cli::DefaultTrainingSeed(*session_);
     const std::vector<std::string> methods = c.methods;
     jobs_.Start("training", [this, training, methods](JobThread& jobs) -> std::function<void()> {

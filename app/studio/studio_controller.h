@@ -35,7 +35,7 @@ struct StudioOptions {
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;
-  int train_steps = 6001;
+  int train_steps = 0;  ///< at most this many steps per method; 0: the world's recipe
   int rollout_tests = 10;
   int calibration_points = 12;
   int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)

@@ -64,6 +64,8 @@ TEST_F(SessionCliTest, TruncatedEpisodeIsDamagedUntilDeleted) {
   EXPECT_TRUE(fs::exists(session / "checkpoints" / "baseline.ckpt"));
   EXPECT_TRUE(fs::exists(session / "checkpoints" / "recon.ckpt"));
   EXPECT_EQ(ReadJson(session / "training" / "baseline.json")["train_demos"], kDemos - 1);
+  // Without --lr the world's recipe decides (Dynamic 2D: the authors' 4e-4).
+  EXPECT_DOUBLE_EQ(ReadJson(session / "training" / "baseline.json")["learning_rate"], 4e-4);
 }
 
 // 7d. A file that is not HDF5 is refused before any session is made.
@@ -132,6 +134,13 @@ TEST_F(SessionCliTest, WrongArgumentsAreRefused) {
   EXPECT_THAT(r.output, HasSubstr("recon"));
   EXPECT_THAT(r.output, HasSubstr("baseline"));
   EXPECT_FALSE(fs::exists(session / "checkpoints"));
+  // A learning rate that is no rate: refused by name (0 is not "the recipe's" when typed).
+  for (const char* lr : {"0", "-0.001", "nan"}) {
+    r = RunRecon("train --session " + session.string() + " --steps 200 --lr " + lr);
+    EXPECT_EQ(r.exit_code, 2) << lr << ": " << r.output;
+    EXPECT_THAT(r.output, ::testing::AnyOf(HasSubstr("--lr"), HasSubstr("learning_rate"))) << lr;
+    EXPECT_FALSE(fs::exists(session / "checkpoints")) << lr;
+  }
 
   const std::string manifest = ReadBytes(session / "session.json");
   r = RunRecon("session mark " + session.string() + " demo_0");

@@ -180,6 +180,7 @@ TEST(StudioCommandTest, AScriptDrivesTheStudioAndNamesItsMistakes) {
   ASSERT_TRUE(std::holds_alternative<StartTraining>(commands[0]));
   EXPECT_EQ(std::get<StartTraining>(commands[0]).methods,
             (std::vector<std::string>{"baseline", "recon"}));
+  EXPECT_EQ(std::get<StartTraining>(commands[0]).steps, 0) << "the world's recipe decides";
   try {
     harness.driver().RunScript("wait 1\nclick Trian\n", "demo.script");
     FAIL() << "a misspelt label must be an error";

@@ -44,7 +44,7 @@ void DrawTrainScreen(const ScreenContext& context) {
     if (Button("Cancel training")) context.commands.Push(CancelTraining{});
   } else if (Button("Train Baseline and RECON", !Blocked(s, teach::Step::kTrain),
                     WhyBlocked(s, teach::Step::kTrain))) {
-    context.commands.Push(StartTraining{{"baseline", "recon"}, 6001});
+    context.commands.Push(StartTraining{{"baseline", "recon"}});
   }
   ImGui::Spacing();
   // Side by side, as the paper compares them.

@@ -40,7 +40,7 @@ struct RecordPlay {
 };
 struct StartTraining {
   std::vector<std::string> methods;
-  int steps = 6001;
+  int steps = 0;  ///< 0: the session's world's recipe (at most the studio's --train-steps)
 };
 struct CancelTraining {};
 struct RunRollouts {
