@@ -184,7 +184,7 @@ Dataset MakeTabletopLikeData(uint64_t seed) {
 void BM_TrainStepTabletop(benchmark::State& state) {
   static const Dataset data = MakeTabletopLikeData(11);
   NetworkConfig network;
-  network.policy_hidden = {128, 128};
+  network.policy_hidden = {512, 512};  // the tabletop recipe's (engine/experiments/recipe.cc)
   network.image_scale = 1.0f / 255.0f;
   network.action_chunk = 10;
   TrainConfig train;

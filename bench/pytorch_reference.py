@@ -72,7 +72,7 @@ def nll(mean, logvar, target):
 
 def tabletop_ms_per_step(steps):
     """The tabletop recipe's step (BM_TrainStepTabletop): RECON (Play), x 7, u 7 in chunks of 10,
-    a (128, 128) policy, Gaussian NLL, pixels scaled to 0-1, batch 20 of demos and 20 of play."""
+    a (512, 512) policy, Gaussian NLL, pixels scaled to 0-1, batch 20 of demos and 20 of play."""
     n, chunk = 480, 10
     images = torch.randint(0, 256, (n, 3, 64, 64)).float() / 255.0
     play_images = torch.randint(0, 256, (40, 3, 64, 64)).float() / 255.0
@@ -81,7 +81,7 @@ def tabletop_ms_per_step(steps):
     beacons = torch.randn(n, 2)
     play_beacons = torch.randn(40, 2)
     features = Features(16 * 13 * 13)
-    policy = Head(13, 128, 7 * chunk, torch.relu)
+    policy = Head(13, 512, 7 * chunk, torch.relu)
     beacon = Head(6, 16, 2, torch.tanh)
     params = list(features.parameters()) + list(policy.parameters()) + list(beacon.parameters())
     optimizer = torch.optim.Adam(params, lr=4e-4)

@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <thread>
@@ -151,12 +152,16 @@ void BM_StudioTrainToRolloutsFourDemos(benchmark::State& state) {
   }
   controller.Push(recon::ui::RecordPlay{40});
   wait_idle();
+  double seconds = 0;
   for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
     controller.Push(recon::ui::StartTraining{{"baseline", "recon"}});
     wait_idle();
     controller.Push(recon::ui::RunRollouts{options.rollout_tests});
     wait_idle();
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  state.counters["train_to_rollouts_s"] = seconds;
   const recon::ui::StudioSnapshot snapshot = controller.Snapshot();
   if (!snapshot.errors.empty()) state.SkipWithError(snapshot.errors.front().c_str());
   for (const recon::ui::RolloutView& r : snapshot.rollouts) {
