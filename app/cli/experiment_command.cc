@@ -142,7 +142,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   if (command.get_option("--beacon-weight")->count() > 0) {
     config.train.beacon_weight = flags.beacon_weight;
   }
-  if (command.get_option("--play-weight")->count() > 0) config.train.play_weight = flags.play_weight;
+  if (command.get_option("--play-weight")->count() > 0)
+    config.train.play_weight = flags.play_weight;
   config.train.backend = learn::ParseBackend(flags.backend);
   if (flags.targets == "standardized") {
     config.train.standardize_targets = true;

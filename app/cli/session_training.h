@@ -13,7 +13,7 @@ namespace recon::cli {
 
 /// How `recon train` and the studio train a method on a session (the world's recipe otherwise).
 struct SessionTrainingOptions {
-  int steps = 0;               ///< 0: the world's recipe (WithRecipeDefaults)
+  int steps = 0;  ///< 0: the world's recipe (WithRecipeDefaults)
   int batch = 20;
   double learning_rate = 0.0;  ///< 0: the world's recipe (WithRecipeDefaults)
   int feature_dim = 6;

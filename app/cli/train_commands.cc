@@ -25,7 +25,7 @@ using json = nlohmann::json;
 struct TrainFlags {
   std::string session;
   std::vector<std::string> methods = {"baseline", "recon"};
-  int steps = 0;               ///< 0: the world's recipe
+  int steps = 0;  ///< 0: the world's recipe
   int batch = 20;
   double learning_rate = 0.0;  ///< 0: the world's recipe
   int feature_dim = 6;
@@ -140,16 +140,18 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
   train->add_option("--methods,--method", flags->methods, "recon, baseline, or both")
       ->delimiter(',')
       ->capture_default_str();
-  train->add_option("--steps", flags->steps,
-                    "training steps (default: the world's recipe: 15000 on the tabletop, 6001 "
-                    "elsewhere)")
+  train
+      ->add_option("--steps", flags->steps,
+                   "training steps (default: the world's recipe: 15000 on the tabletop, 6001 "
+                   "elsewhere)")
       ->check(CLI::PositiveNumber);
   train->add_option("--batch", flags->batch, "batch size")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  train->add_option("--lr", flags->learning_rate,
-                    "Adam learning rate (default: the world's recipe: 0.001 on the tabletop, "
-                    "0.0004 elsewhere)")
+  train
+      ->add_option("--lr", flags->learning_rate,
+                   "Adam learning rate (default: the world's recipe: 0.001 on the tabletop, "
+                   "0.0004 elsewhere)")
       ->check(CLI::PositiveNumber);
   train->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
       ->capture_default_str();

@@ -623,7 +623,8 @@ class StudioController::Cell {
     cli::SessionTrainingOptions training;
     // --train-steps caps what the screen asks for; 0 leaves both to the world's recipe.
     training.steps = options_.train_steps;
-    if (c.steps > 0) training.steps = training.steps > 0 ? std::min(c.steps, training.steps) : c.steps;
+    if (c.steps > 0)
+      training.steps = training.steps > 0 ? std::min(c.steps, training.steps) : c.steps;
     training = cli::WithRecipeDefaults(*session_, training);
     training.seed = cli::DefaultTrainingSeed(*session_);
     const std::vector<std::string> methods = c.methods;

@@ -22,8 +22,8 @@ struct StudioOptions {
   /// The list of recent sessions (empty: RecentSessions::DefaultPath()).
   std::string recent_sessions_file;
   std::string world = "tabletop";
-  int image_size = 64;              ///< the policy camera (new sessions)
-  uint64_t seed = 1;                ///< new sessions
+  int image_size = 64;  ///< the policy camera (new sessions)
+  uint64_t seed = 1;    ///< new sessions
   /// New sessions' simulated beacon noise (metres); unset: the world's default (a DWM1001's on
   /// the tabletop, worlds::DefaultBeaconNoise).
   std::optional<double> beacon_noise_sigma;

@@ -56,9 +56,9 @@ TEST(TabletopLearningTest, APolicyTrainedOnTwoDemonstrationsRepeatsThem) {
     const std::string what = "training scene " + std::to_string(scenes[i]) + ": grasped " +
                              std::to_string(o.details.at("grasped")) + ", closest approach " +
                              std::to_string(o.details.at("closest_approach_m")) +
-                             " m, the toast ends " + std::to_string(o.metric) + " m from the plate (" +
-                             std::to_string(start_m) + " m at first), success " +
-                             std::to_string(o.succeeded);
+                             " m, the toast ends " + std::to_string(o.metric) +
+                             " m from the plate (" + std::to_string(start_m) +
+                             " m at first), success " + std::to_string(o.succeeded);
     // The grasp is the hard, discrete part; a broken pipeline never makes it. Where a grasped
     // toast is let go is a matter of precision (one of six seeds let it go 21 cm short of the
     // plate), so the carry is checked as progress toward the plate.
