@@ -20,6 +20,10 @@ namespace {
 namespace fs = std::filesystem;
 using recon::studio::StudioController;
 
+void WaitIdle(const StudioController& controller) {
+  while (!controller.Idle()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
 /// A studio on a temporary tabletop session with 2 demonstrations, on the Record screen.
 class Studio {
  public:
@@ -47,9 +51,7 @@ class Studio {
     controller_.reset();
     fs::remove_all(dir_);
   }
-  void WaitIdle() {
-    while (!controller_->Idle()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  void WaitIdle() { ::WaitIdle(*controller_); }
   void Frame() {
     window_->Frame({}, [&] {
       recon::ui::DrawStudio(controller_->Snapshot(), commands_, textures_);
@@ -142,23 +144,20 @@ void BM_StudioTrainToRolloutsFourDemos(benchmark::State& state) {
   options.recent_sessions_file = (dir / "recent.json").string();
   options.real_time = false;
   StudioController controller(options);
-  const auto wait_idle = [&] {
-    while (!controller.Idle()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  };
   controller.Push(recon::ui::AssignBeacon{"plate", "plate"});
   for (int i = 0; i < 4; ++i) {
     controller.Push(recon::ui::StartRecording{});
-    wait_idle();
+    WaitIdle(controller);
   }
   controller.Push(recon::ui::RecordPlay{40});
-  wait_idle();
+  WaitIdle(controller);
   double seconds = 0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
     controller.Push(recon::ui::StartTraining{{"baseline", "recon"}});
-    wait_idle();
+    WaitIdle(controller);
     controller.Push(recon::ui::RunRollouts{options.rollout_tests});
-    wait_idle();
+    WaitIdle(controller);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   state.counters["train_to_rollouts_s"] = seconds;

@@ -77,6 +77,7 @@ std::string DefaultOutDir(const std::string& world) {
 experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::App& command) {
   experiments::ExperimentConfig config;
   config.world = flags.world;
+  const auto given = [&](const char* option) { return command.get_option(option)->count() > 0; };
   const bool conditions_given = command.count("--conditions") > 0;
   const CLI::Option* noise_option = command.get_option_no_throw("--noise");
   const bool noise_given = noise_option != nullptr && noise_option->count() > 0;
@@ -106,9 +107,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       if (c.placement != "none") c.noise_sigma = flags.beacon_noise;
     }
     // Given values (even absurd ones, which ValidateExperimentConfig refuses by name) win.
-    config.demo_noise = command.get_option("--demo-noise")->count() > 0
-                            ? flags.demo_noise
-                            : worlds::DefaultDemoNoise(flags.world);
+    config.demo_noise =
+        given("--demo-noise") ? flags.demo_noise : worlds::DefaultDemoNoise(flags.world);
   }
   config.demos = flags.demos;
   config.runs = flags.runs;
@@ -119,10 +119,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
                                : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   config.network.feature_dim = flags.feature_dim;
   // --authors-recipe changes the starting point; options typed explicitly still win over it.
-  const auto use = [&](const char* option) {
-    return !flags.authors_recipe || command.get_option(option)->count() > 0;
-  };
-  const auto given = [&](const char* option) { return command.get_option(option)->count() > 0; };
+  const auto use = [&](const char* option) { return !flags.authors_recipe || given(option); };
   // The world's recipe (recipe.h) for what the user did not set explicitly.
   const experiments::WorldRecipe recipe =
       experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
@@ -139,11 +136,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   if (given("--steps")) config.train.steps = flags.steps;
   if (use("--batch")) config.train.batch_size = flags.batch;
   if (use("--restart")) config.train.restart_rule = flags.restart;
-  if (command.get_option("--beacon-weight")->count() > 0) {
-    config.train.beacon_weight = flags.beacon_weight;
-  }
-  if (command.get_option("--play-weight")->count() > 0)
-    config.train.play_weight = flags.play_weight;
+  if (given("--beacon-weight")) config.train.beacon_weight = flags.beacon_weight;
+  if (given("--play-weight")) config.train.play_weight = flags.play_weight;
   config.train.backend = learn::ParseBackend(flags.backend);
   if (flags.targets == "standardized") {
     config.train.standardize_targets = true;
@@ -163,20 +157,14 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.network.action_chunk =
       flags.action_chunk >= 0 ? flags.action_chunk : recipe.network.action_chunk;
-  config.network.spatial_softmax = command.get_option("--spatial-softmax")->count() > 0
-                                       ? flags.spatial_softmax
-                                       : recipe.network.spatial_softmax;
-  config.train.standardize_inputs = command.get_option("--standardize-inputs")->count() > 0
-                                        ? flags.standardize_inputs
-                                        : recipe.train.standardize_inputs;
-  if (command.get_option("--restart")->count() == 0) {
-    config.train.restart_rule = recipe.train.restart_rule;
-  }
+  config.network.spatial_softmax =
+      given("--spatial-softmax") ? flags.spatial_softmax : recipe.network.spatial_softmax;
+  config.train.standardize_inputs =
+      given("--standardize-inputs") ? flags.standardize_inputs : recipe.train.standardize_inputs;
+  if (!given("--restart")) config.train.restart_rule = recipe.train.restart_rule;
   if (flags.world == "bintransfer" || flags.world == "tabletop") {
     // Halving the Baseline's steps is the authors' Dynamic 2D habit; here both train as long.
-    if (command.get_option("--baseline-steps")->count() == 0) {
-      config.baseline_steps = config.train.steps;
-    }
+    if (!given("--baseline-steps")) config.baseline_steps = config.train.steps;
   }
   if (worlds::WorldNeedsRenderer(config.world)) {
     config.cell.renderer_factory = render::MujocoRendererFactory();

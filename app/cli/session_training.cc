@@ -104,10 +104,10 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
   learn::TrainConfig train = recipe.train;
   train.method = learn::ParseMethod(method);
   train.loss = learn::ParseLossKind(flags.loss);
-  const SessionTrainingOptions resolved = WithRecipeDefaults(session, flags);
-  train.steps = resolved.steps;
+  // 0 leaves the recipe's steps and rate (train starts from them), as WithRecipeDefaults does.
+  if (flags.steps != 0) train.steps = flags.steps;
   train.batch_size = flags.batch;
-  train.learning_rate = resolved.learning_rate;
+  if (flags.learning_rate != 0.0) train.learning_rate = flags.learning_rate;
   train.seed = seed;
   learn::Trainer trainer(data, network, train);
 
@@ -168,7 +168,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"seed", seed},
       {"loss", flags.loss},
       {"batch", flags.batch},
-      {"learning_rate", resolved.learning_rate},
+      {"learning_rate", train.learning_rate},
       {"feature_dim", flags.feature_dim},
       {"train_demos", data.demos.size()},
       {"train_samples", data.NumDemoSamples()},
