@@ -1,7 +1,10 @@
 #include "app/studio/studio_jobs.h"
 
+#include <algorithm>
 #include <chrono>
+#include <exception>
 #include <filesystem>
+#include <thread>
 
 #include "devices/cell/sim_calibration.h"
 #include "engine/calib/calibration.h"
@@ -34,29 +37,51 @@ std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session
       state.training.push_back(view);
     }
   });
-  for (size_t i = 0; i < methods.size(); ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    cli::TrainSessionMethod(
-        session, methods[i], options,
-        [&](const cli::TrainingProgress& p) {
-          jobs.Update([&](JobState& state) {
-            ui::TrainingView& view = state.training[i];
-            view.label = p.label;
-            view.running = true;
-            view.step = p.step;
-            view.seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            view.loss_step.push_back(static_cast<float>(p.step));
-            view.action_loss.push_back(p.latest.action_loss);
-            if (methods[i] == teach::kReconMethod) view.beacon_loss.push_back(p.latest.beacon_loss);
-            view.total_loss.push_back(p.latest.total_loss);
-          });
-        },
-        jobs.cancel_flag());
-    jobs.Update([&](JobState& state) {
-      state.training[i].running = false;
-      state.training[i].done = true;
-    });
+  // Each trainer runs on one core (learner.h), so the methods train side by side, one thread
+  // each: on 2 cores Train-to-Rollouts takes the slowest method's time, not the sum.
+  std::vector<std::exception_ptr> errors(methods.size());
+  const auto train_one = [&](size_t i) {
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      cli::TrainSessionMethod(
+          session, methods[i], options,
+          [&](const cli::TrainingProgress& p) {
+            jobs.Update([&](JobState& state) {
+              ui::TrainingView& view = state.training[i];
+              view.label = p.label;
+              view.running = true;
+              view.step = p.step;
+              view.seconds =
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+              view.loss_step.push_back(static_cast<float>(p.step));
+              view.action_loss.push_back(p.latest.action_loss);
+              if (methods[i] == teach::kReconMethod) {
+                view.beacon_loss.push_back(p.latest.beacon_loss);
+              }
+              view.total_loss.push_back(p.latest.total_loss);
+            });
+          },
+          jobs.cancel_flag());
+      jobs.Update([&](JobState& state) {
+        state.training[i].running = false;
+        state.training[i].done = true;
+      });
+    } catch (...) {
+      errors[i] = std::current_exception();
+      jobs.Update([&](JobState& state) { state.training[i].running = false; });
+    }
+  };
+  const size_t parallel = std::max<size_t>(1, std::thread::hardware_concurrency());
+  for (size_t first = 0; first < methods.size(); first += parallel) {
+    std::vector<std::thread> threads;
+    for (size_t i = first; i < std::min(methods.size(), first + parallel); ++i) {
+      threads.emplace_back(train_one, i);
+    }
+    for (std::thread& t : threads) t.join();
+  }
+  // What one method's failure says is reported; a method that finished keeps its checkpoint.
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
   }
   return jobs.Peek().training;
 }

@@ -16,7 +16,7 @@ namespace recon::studio {
 /// saves the result to `path`.
 void CalibrateCell(JobThread& jobs, uint64_t seed, int points, const std::string& path);
 
-/// Trains `methods` one after the other, with live losses in the job state's training views;
+/// Trains `methods` side by side (one thread each, up to the number of cores), with live losses in the job state's training views;
 /// returns the finished views. Throws UserError when cancelled.
 std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session& session,
                                            const cli::SessionTrainingOptions& options,
