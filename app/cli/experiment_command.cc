@@ -62,6 +62,7 @@ struct ExperimentFlags {
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
   double demo_noise = 0.0;          ///< only when --demo-noise is given; else the world's default
   int random_shift = -1;            ///< -1: the world's recipe
+  double feature_noise = 0.0;       ///< only when --feature-noise was given
   int action_chunk = -1;            ///< -1: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
   bool standardize_inputs = false;  ///< likewise
@@ -152,6 +153,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.network.image_scale = recipe.network.image_scale;
   config.train.random_shift_px =
       flags.random_shift >= 0 ? flags.random_shift : recipe.train.random_shift_px;
+  config.train.feature_noise =
+      given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
   if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
     config.train.random_shift_px = 0;  // vector observations have no pixels to shift
   }
@@ -299,6 +302,11 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "random-shift augmentation of camera images, pixels (DrQ; 0 = off; default: "
                    "the world's recipe)")
       ->check(CLI::Range(0, 16));
+  // Range-checked (NaN too) by ValidateExperimentConfig, with the option's name.
+  command->add_option("--feature-noise", flags->feature_noise,
+                      "noise on the features the policy reads while training, in standard "
+                      "deviations of each feature over the batch (0 = off; default: the world's "
+                      "recipe)");
   command
       ->add_option("--action-chunk", flags->action_chunk,
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "

@@ -62,6 +62,13 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
                       FormatNumber(weight) + ")");
     }
   }
+  if (!std::isfinite(config.train.feature_noise) || config.train.feature_noise < 0 ||
+      config.train.feature_noise > learn::kMaxFeatureNoise) {
+    throw UserError("--feature-noise must be between 0 and " +
+                    FormatNumber(learn::kMaxFeatureNoise) +
+                    " (standard deviations of each feature; got " +
+                    FormatNumber(config.train.feature_noise) + ")");
+  }
   if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 || config.demo_noise > 1.0) {
     throw UserError("--demo-noise must be between 0 and 1 (action units, rad/s for the arm; got " +
                     FormatNumber(config.demo_noise) + ")");

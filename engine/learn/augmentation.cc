@@ -1,6 +1,7 @@
 #include "engine/learn/augmentation.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace recon::learn {
 
@@ -27,6 +28,24 @@ Shift DrawShift(Rng& rng, int pad) {
   s.dy = static_cast<int>(rng.UniformInt(span)) - pad;
   s.dx = static_cast<int>(rng.UniformInt(span)) - pad;
   return s;
+}
+
+void FeatureNoiseOffsets(const float* phi, int batch, int k, double sigma, const float* noise,
+                         float* offsets) {
+  for (int i = 0; i < k; ++i) {
+    double sum = 0, sum_sq = 0;
+    for (int b = 0; b < batch; ++b) {
+      const double v = phi[static_cast<size_t>(b) * k + i];
+      sum += v;
+      sum_sq += v * v;
+    }
+    const double mean = sum / batch;
+    const double sd = std::sqrt(std::max(0.0, sum_sq / batch - mean * mean));
+    for (int b = 0; b < batch; ++b) {
+      const size_t at = static_cast<size_t>(b) * k + i;
+      offsets[at] = static_cast<float>(sigma * sd * noise[at]);
+    }
+  }
 }
 
 }  // namespace recon::learn

@@ -5,6 +5,9 @@
 // show the camera the same few scenes; shifting them by a few pixels teaches the feature network
 // that a pixel's exact place carries less than what is there. Training only: a policy acting sees
 // the image as it is.
+//
+// Also feature noise (TrainConfig::feature_noise): the other augmentation, on the features the
+// policy reads rather than on the image.
 
 #include <cstdint>
 
@@ -14,6 +17,13 @@ namespace recon::learn {
 
 /// The largest shift TrainConfig::random_shift_px accepts (in pixels).
 constexpr int kMaxRandomShiftPx = 16;
+
+/// Feature noise (TrainConfig::feature_noise) for the features `phi` of a batch ([batch][k],
+/// row-major): offsets[b][i] = sigma * sd_i * noise[b][i], with sd_i feature i's standard
+/// deviation over the batch (divided by the batch size, as PyTorch's std(unbiased=False)) and
+/// `noise` standard normal draws.
+void FeatureNoiseOffsets(const float* phi, int batch, int k, double sigma, const float* noise,
+                         float* offsets);
 
 /// Writes `image` (channels-first, channels x height x width) shifted by (dy, dx) pixels into
 /// `out`: out(c, r, k) = image(c, clamp(r + dy), clamp(k + dx)), i.e. the border replicated.

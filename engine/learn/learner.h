@@ -79,6 +79,9 @@ struct NetworkConfig {
   bool operator==(const NetworkConfig& other) const = default;
 };
 
+/// The largest TrainConfig::feature_noise accepted (in standard deviations of each feature).
+constexpr double kMaxFeatureNoise = 10.0;
+
 /// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
 /// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).
 /// AuthorsRecipe() gives the authors' code exactly (MSE of a sample, weights 1.0 / 1.2 / 1.2).
@@ -116,6 +119,14 @@ struct TrainConfig {
   /// this many pixels per axis, border replicated, drawn from its own seeded stream. 0 = off (and
   /// no random numbers drawn, so results without it are unchanged); at most kMaxRandomShiftPx.
   int random_shift_px = 0;
+  /// Feature noise: before the policy reads the features of a demonstration batch, each one is
+  /// perturbed by feature_noise times its standard deviation over the batch (Gaussian, from the
+  /// augmentation stream; the spread is held constant in the gradient). The beacon net reads them
+  /// clean. It keeps the policy flat in directions the demonstrations never varied (a bowl where
+  /// no demonstration had it), which otherwise move the arm off the toast. Relative to the
+  /// spread, so the feature net cannot outgrow it by scaling up. 0 = off (nothing drawn, results
+  /// unchanged); at most kMaxFeatureNoise.
+  double feature_noise = 0.0;
 
   bool operator==(const TrainConfig& other) const = default;
 };

@@ -47,12 +47,16 @@ void ForwardFeatures(const Architecture& arch, const float* params, ModelBuffers
   MlpForward(arch.feature, params, buffers.mlp_input.data(), buffers.feature);
 }
 
-void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& buffers) {
+void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& buffers,
+                   const float* phi_offsets) {
   const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
   for (int b = 0; b < buffers.batch; ++b) {
     float* row = buffers.policy_input.data() + static_cast<size_t>(b) * (x_dim + k);
     std::copy_n(buffers.x.data() + static_cast<size_t>(b) * x_dim, x_dim, row);
     std::copy_n(buffers.phi() + static_cast<size_t>(b) * k, k, row + x_dim);
+    if (phi_offsets == nullptr) continue;
+    const float* offsets = phi_offsets + static_cast<size_t>(b) * k;
+    for (int i = 0; i < k; ++i) row[x_dim + i] += offsets[i];
   }
   MlpForward(arch.policy, params, buffers.policy_input.data(), buffers.policy);
 }

@@ -32,7 +32,10 @@ struct ModelBuffers {
 };
 
 void ForwardFeatures(const Architecture& arch, const float* params, ModelBuffers& buffers);
-void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& buffers);
+/// `phi_offsets` ([batch][k], optional) are added to phi in the policy's input only (feature
+/// noise, TrainConfig::feature_noise): the beacon net still reads the features clean.
+void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& buffers,
+                   const float* phi_offsets = nullptr);
 void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& buffers);
 
 /// Backpropagates the given head gradients (either may be null if that head was not used) and

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/strings.h"
 
 namespace recon::learn {
 
@@ -47,6 +48,12 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
     throw UserError("train config: random_shift_px must be between 0 and " +
                     std::to_string(kMaxRandomShiftPx) + " pixels (got " +
                     std::to_string(train.random_shift_px) + ")");
+  }
+  if (!std::isfinite(train.feature_noise) || train.feature_noise < 0 ||
+      train.feature_noise > kMaxFeatureNoise) {
+    throw UserError("train config: feature_noise must be between 0 and " +
+                    FormatNumber(kMaxFeatureNoise) + " standard deviations (got " +
+                    FormatNumber(train.feature_noise) + ")");
   }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {

@@ -144,9 +144,15 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
 
   const at::Tensor x = Wrap(batch.demo->x.data(), {n, spec.x_dim});
   const at::Tensor phi = s.Features(params, *batch.demo, s.demo_y);
+  at::Tensor policy_phi = phi;
+  if (batch.feature_noise != nullptr) {  // as FeatureNoiseOffsets: the spread held constant
+    const at::Tensor spread = phi.detach().std(0, /*unbiased=*/false);
+    policy_phi = phi + (s.train.feature_noise * spread) *
+                           Wrap(batch.feature_noise, {n, s.arch.feature_dim()});
+  }
   // Per action of the chunk, as the fused backend does (trainer.cc).
   const at::Tensor action =
-      HeadLoss(kind, s.Mlp(s.arch.policy, params, at::cat({x, phi}, 1)),
+      HeadLoss(kind, s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1)),
                Wrap(batch.target_u, {n, s.arch.action_width()}), batch.noise_u) /
       static_cast<double>(s.arch.network.action_chunk);
   at::Tensor total = action * s.train.action_weight;

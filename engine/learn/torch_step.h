@@ -25,6 +25,7 @@ struct TorchBatch {
   const float* noise_u = nullptr;
   const float* noise_b = nullptr;
   const float* noise_play = nullptr;
+  const float* feature_noise = nullptr;  ///< [batch][k] draws; null when feature noise is off
 };
 
 class TorchStep {

@@ -70,6 +70,10 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     shifted_demo_y_.assign(static_cast<size_t>(batch) * data_.y_size, 0.0f);
     if (UsesPlay()) shifted_play_y_.assign(shifted_demo_y_.size(), 0.0f);
   }
+  if (train.feature_noise > 0) {
+    feature_noise_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
+    phi_offsets_.assign(feature_noise_.size(), 0.0f);
+  }
   if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
   StartAttempt(0);
 }
@@ -128,6 +132,7 @@ void TrainerImpl::GatherBatch() {
       }
     }
   }
+  if (train_.feature_noise > 0) FillNormal(augment_rng_, feature_noise_);
   if (train_.loss == LossKind::kMseSample) {
     FillNormal(noise_rng_, noise_u_);
     if (beacons) FillNormal(noise_rng_, noise_b_);
@@ -140,7 +145,13 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
   const int batch = train_.batch_size;
   const DataSpec& s = data_.spec;
   ForwardFeatures(arch_, params, demo_);
-  ForwardPolicy(arch_, params, demo_);
+  if (train_.feature_noise > 0) {
+    FeatureNoiseOffsets(demo_.phi(), batch, arch_.feature_dim(), train_.feature_noise,
+                        feature_noise_.data(), phi_offsets_.data());
+    ForwardPolicy(arch_, params, demo_, phi_offsets_.data());
+  } else {
+    ForwardPolicy(arch_, params, demo_);
+  }
   // With a chunk of k actions the head's loss sums k actions' terms: per action (divided by k)
   // it weighs against the beacon term as a single action does.
   const float chunk = static_cast<float>(network_.action_chunk);
@@ -183,6 +194,7 @@ TorchBatch TrainerImpl::MakeTorchBatch() const {
   b.noise_u = noise_u_.data();
   b.noise_b = noise_b_.data();
   b.noise_play = noise_play_.data();
+  b.feature_noise = train_.feature_noise > 0 ? feature_noise_.data() : nullptr;
   return b;
 }
 

@@ -27,7 +27,7 @@ struct TrainerState {
   int64_t adam_step = 0;
   Rng::State batch_rng{};
   Rng::State noise_rng{};
-  Rng::State augment_rng{};  ///< image shifts (TrainConfig::random_shift_px)
+  Rng::State augment_rng{};  ///< image shifts and feature noise (TrainConfig)
   StepMetrics last;
   std::vector<float> params, exp_avg, exp_avg_sq;
 };
@@ -99,8 +99,9 @@ class TrainerImpl {
   std::vector<float> target_u_, target_b_, target_play_;
   std::vector<float> noise_u_, noise_b_, noise_play_;
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
-  AlignedFloats shifted_demo_y_, shifted_play_y_;  ///< the batch's augmented images
-  std::unique_ptr<TorchStep> torch_;  ///< Backend::kTorch only
+  std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
+  AlignedFloats shifted_demo_y_, shifted_play_y_;   ///< the batch's augmented images
+  std::unique_ptr<TorchStep> torch_;                ///< Backend::kTorch only
 };
 
 }  // namespace recon::learn

@@ -139,6 +139,7 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   EXPECT_DOUBLE_EQ(summary["protocol"]["beacon_noise"]["recon-play"].get<double>(), 0.07);
   EXPECT_EQ(summary["network"]["action_chunk"], 10);
   EXPECT_EQ(summary["train"]["random_shift_px"], 4);
+  EXPECT_DOUBLE_EQ(summary["train"]["feature_noise"].get<double>(), 0.0);
   const auto& time = summary["teaching_time"];
   // The scripted teacher takes about 13.5 s (the paper's people took 16.6 s).
   const double per_demo = time["seconds_per_demonstration"].get<double>();
@@ -171,6 +172,9 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--action-chunk 0", "--action-chunk"},
       {"--beacon-weight -1", "--beacon-weight must be a finite number >= 0"},
       {"--play-weight nan", "--play-weight must be a finite number >= 0"},
+      {"--feature-noise -0.5", "--feature-noise must be between 0 and 10"},
+      {"--feature-noise nan", "--feature-noise must be between 0 and 10"},
+      {"--feature-noise 11", "--feature-noise must be between 0 and 10"},
   };
   for (const auto& c : cases) {
     const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -95,22 +94,9 @@ TEST(AugmentationTest, TrainingWithShiftsIsReproducibleAndDiffersFromWithout) {
 }
 
 TEST(AugmentationTest, ACheckpointResumesTheShiftsBitwise) {
-  const Dataset data = testing::MakeImageTask(12, 24, 16, 6);
-  TrainConfig train = ShiftConfig(3);
-  Trainer whole(data, testing::SmallImageNet(), train);
-  whole.Train();
-  std::atomic<bool> cancel{false};
-  Trainer half(data, testing::SmallImageNet(), train);
-  half.SetObserver([&](const StepMetrics& m) {
-    if (m.step == 29) cancel = true;
-  });
-  ASSERT_TRUE(half.Train(&cancel).cancelled);
-  const std::string path = ::testing::TempDir() + "/recon_augment_resume.ckpt";
-  half.SaveCheckpoint(path);
-  auto resumed = Trainer::Resume(path, data);
-  resumed->Train();
-  EXPECT_TRUE(testing::BitwiseEqual(testing::Probe(resumed->policy(), data),
-                                    testing::Probe(whole.policy(), data)));
+  EXPECT_TRUE(testing::ResumedRunMatchesUninterrupted(
+      testing::MakeImageTask(12, 24, 16, 6), testing::SmallImageNet(), ShiftConfig(3),
+      ::testing::TempDir() + "/recon_augment_resume.ckpt"));
 }
 
 TEST(AugmentationTest, TheSettingIsStoredAndBadValuesAreRefused) {

@@ -2,8 +2,11 @@
 
 // Small synthetic datasets for the learner's tests.
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/core/dataset.h"
@@ -115,6 +118,25 @@ inline std::vector<float> Probe(const Policy& policy, const Dataset& data, int c
     }
   }
   return out;
+}
+
+/// Trains `train` on `data` once through, and once cancelled after 30 steps, checkpointed to
+/// `path`, resumed and finished; true if both end in bitwise the same policy (every generator
+/// stream a setting draws from must be in the checkpoint).
+inline bool ResumedRunMatchesUninterrupted(const Dataset& data, const NetworkConfig& network,
+                                           const TrainConfig& train, const std::string& path) {
+  Trainer whole(data, network, train);
+  whole.Train();
+  std::atomic<bool> cancel{false};
+  Trainer half(data, network, train);
+  half.SetObserver([&](const StepMetrics& m) {
+    if (m.step == 29) cancel = true;
+  });
+  if (!half.Train(&cancel).cancelled) return false;
+  half.SaveCheckpoint(path);
+  const std::unique_ptr<Trainer> resumed = Trainer::Resume(path, data);
+  resumed->Train();
+  return BitwiseEqual(Probe(resumed->policy(), data), Probe(whole.policy(), data));
 }
 
 }  // namespace recon::learn::testing

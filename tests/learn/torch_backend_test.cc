@@ -92,6 +92,21 @@ std::vector<Case> Cases() {
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
+  // Feature noise on the policy's input (TrainConfig::feature_noise): RECON on images, where the
+  // beacon net must read the features clean, and the Baseline on vectors.
+  for (bool image : {true, false}) {
+    Case c;
+    c.name = std::string(image ? "image" : "vector") + " feature-noise";
+    c.data = image ? MakeImageTask(24, 24, 32, 12) : MakeVectorTask(25, 20, 40);
+    if (image) c.network.image_scale = 1.0f / 255.0f;
+    c.train.restart_rule = false;
+    c.train.method = image ? Method::kRecon : Method::kBaseline;
+    c.train.seed = 7;
+    c.train.play_weight = 0.7;
+    c.train.feature_noise = 0.5;
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   return cases;
 }
 
