@@ -3,9 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli/camera_command.h"
-#include "app/cli/devices_command.h"
 #include "app/cli/cell_commands.h"
+#include "app/cli/devices_command.h"
 #include "app/cli/experiment_command.h"
+#include "app/cli/option_checks.h"
 #include "app/cli/record_command.h"
 #include "app/cli/report_command.h"
 #include "app/cli/robot_command.h"
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   recon::cli::GlobalOptions global;
   app.add_option("--threads", global.threads, "Torch threads per training job")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(recon::cli::WholeBetween(1, recon::cli::ParallelismLimit()));
   recon::cli::AddExperimentCommands(app, global);
   recon::cli::AddCellCommands(app);
   recon::cli::AddRecordCommand(app);

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
 #include "engine/core/error.h"
@@ -164,11 +165,11 @@ int main(int argc, char** argv) {
   app.add_option("--noise", flags.options.beacon_noise_sigma,
                  "beacon noise sigma per axis of a new simulated session, metres (default: a "
                  "DWM1001's 0.07 on the tabletop)")
-      ->check(CLI::Range(0.0, 0.5));
+      ->check(recon::cli::NumberBetween(0, 0.5));
   app.add_option("--demo-noise", flags.options.demo_noise_sigma,
                  "noise injected into the executed joint velocities while demonstrating in a new "
                  "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(recon::cli::NumberBetween(0, 1));
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
   app.add_option("--cell", flags.options.cell_profile,
                  "teach with the real devices of this cell profile (JSON: camera, beacons, UR "
@@ -187,9 +188,9 @@ int main(int argc, char** argv) {
   app.add_option("--train-steps", flags.options.train_steps,
                  "training steps per method (default: the world's recipe: 15000 on the "
                  "tabletop)")
-      ->check(CLI::PositiveNumber);
+      ->check(recon::cli::WholeBetween(1, recon::cli::kMaxSteps));
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
-      ->check(CLI::PositiveNumber)
+      ->check(recon::cli::WholeBetween(1, recon::cli::kMaxTests))
       ->capture_default_str();
   app.add_option("--script", flags.script,
                  "play a script of inputs (click <label>, type, press, wait N, wait-idle, "
@@ -201,10 +202,10 @@ int main(int argc, char** argv) {
                      "frames to run without a script (a window: until closed, unless given)")
           ->capture_default_str();
   app.add_option("--width", flags.width, "window width")
-      ->check(CLI::Range(640, 8192))
+      ->check(recon::cli::WholeBetween(640, 8192))
       ->capture_default_str();
   app.add_option("--height", flags.height, "window height")
-      ->check(CLI::Range(480, 8192))
+      ->check(recon::cli::WholeBetween(480, 8192))
       ->capture_default_str();
   return recon::cli::RunMain(app, argc, argv, "recon-studio", [&] {
     flags.frames_given = frames->count() > 0;

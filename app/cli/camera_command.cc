@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "app/cli/option_checks.h"
 #include "devices/camera/camera_calibration_file.h"
 #include "devices/camera/camera_pose.h"
 #include "devices/camera/image_file.h"
@@ -187,7 +188,7 @@ void AddCameraCommand(CLI::App& app) {
   info->add_option("--calibration", flags->calibration, "OpenCV calibration YAML to show");
   info->add_option("--frames", flags->frames, "frames to grab for the rate measurement")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->check(WholeBetween(1, 100000));
   info->add_flag("--json", flags->json, "print one JSON object");
   info->callback([flags] { RunInfo(*flags); });
 
@@ -197,7 +198,7 @@ void AddCameraCommand(CLI::App& app) {
       ->required();
   grab->add_option("--count", flags->count, "frames to save")
       ->capture_default_str()
-      ->check(CLI::Range(1, 100000));
+      ->check(WholeBetween(1, 100000));
   grab->add_flag("--undistort", flags->undistort, "remove lens distortion (needs --calibration)");
   grab->add_option("--calibration", flags->calibration, "OpenCV calibration YAML");
   grab->callback([flags] { RunGrab(*flags); });
@@ -208,7 +209,7 @@ void AddCameraCommand(CLI::App& app) {
   pose->add_option("--tags", flags->tags, "table tags JSON (ids, centres, sizes)")->required();
   pose->add_option("--min-tags", flags->min_tags, "fewest table tags to accept")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1000));
+      ->check(WholeBetween(1, 1000));
   pose->add_flag("--json", flags->json, "print one JSON object");
   pose->callback([flags] { RunPose(*flags); });
 }

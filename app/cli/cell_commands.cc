@@ -7,6 +7,7 @@
 #include <string>
 
 #include "app/cli/device_calibrate.h"
+#include "app/cli/option_checks.h"
 #include "devices/cell/sim_calibration.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/calib/calibration.h"
@@ -132,14 +133,14 @@ void AddCellCommands(CLI::App& app) {
       app.add_subcommand("calibrate", "fit the UWB frame to the table frame from AprilTags");
   calibrate->add_flag("--sim", cal_flags->sim, "calibrate in the simulated cell");
   calibrate->add_option("--points", cal_flags->points, "static beacon poses to collect")
-      ->check(CLI::Range(3, 1000))
+      ->check(WholeBetween(3, 1000))
       ->capture_default_str();
   calibrate->add_option("--seed", cal_flags->seed, "seed of poses, UWB noise and hidden frame")
       ->capture_default_str();
   calibrate->add_option("--dim", cal_flags->dimension, "2d (planar) or 3d fit")
       ->capture_default_str();
   calibrate->add_option("--threshold", cal_flags->threshold_m, "pass if RMSE is at most this (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   calibrate->add_option("--out", cal_flags->out, "save the calibration (JSON) here");
   DeviceCalibrateFlags& device = cal_flags->device;
@@ -162,17 +163,17 @@ void AddCellCommands(CLI::App& app) {
       ->capture_default_str();
   calibrate
       ->add_option("--beacon-tag-size", device.beacon_tag_size_m, "its black border's side (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveNumber())
       ->capture_default_str();
   calibrate
       ->add_option("--beacon-tag-height", device.beacon_tag_height_m,
                    "its face's height over the table (m)")
       ->capture_default_str();
   calibrate->add_option("--frames", device.frames, "camera frames averaged per pose")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveWhole())
       ->capture_default_str();
   calibrate->add_option("--uwb-samples", device.uwb_samples, "beacon positions averaged per pose")
-      ->check(CLI::PositiveNumber)
+      ->check(PositiveWhole())
       ->capture_default_str();
   calibrate->add_flag("--no-wait", device.no_wait,
                       "do not wait for Enter between poses (the beacon is moved by a script)");

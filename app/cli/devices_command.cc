@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/option_checks.h"
 #include "devices/camera/open_camera.h"
 #include "devices/discovery/device_discovery.h"
 
@@ -75,7 +76,7 @@ void AddDevicesCommand(CLI::App& app) {
   list->add_option("--serial-timeout-ms", flags->options.serial_timeout_ms,
                    "how long a serial port may take to answer")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveWhole());
   list->add_flag("--json", flags->json, "a JSON document instead of a table");
   list->callback([flags] { RunList(*flags); });
 }

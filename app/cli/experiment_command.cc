@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/cli/option_checks.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -246,9 +247,14 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   CLI::App* command = experiment.add_subcommand(world, help);
   command->add_option("--demos", flags->demos, "demonstrations per run; a list sweeps them")
       ->delimiter(',')
+      ->check(WholeBetween(1, kMaxDemos))
       ->capture_default_str();
-  command->add_option("--runs", flags->runs, "training runs per condition")->capture_default_str();
-  command->add_option("--tests", flags->tests, "test scenarios")->capture_default_str();
+  command->add_option("--runs", flags->runs, "training runs per condition")
+      ->check(WholeBetween(1, kMaxRuns))
+      ->capture_default_str();
+  command->add_option("--tests", flags->tests, "test scenarios")
+      ->check(WholeBetween(1, kMaxTests))
+      ->capture_default_str();
   command
       ->add_option(
           "--conditions", flags->conditions,
@@ -266,7 +272,8 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command->add_option("--seed", flags->seed, "master seed")->capture_default_str();
   command->add_option("--out", flags->out, "output folder (default out/<world>-<time>)");
   command->add_flag("--force", flags->force, "replace the results already in --out");
-  command->add_option("--jobs", flags->jobs, "runs trained in parallel (default: cores)");
+  command->add_option("--jobs", flags->jobs, "runs trained in parallel (default: cores)")
+      ->check(WholeBetween(1, ParallelismLimit()));
   command->add_option("--loss", flags->loss, "nll (paper) or mse-sample (authors' code)")
       ->capture_default_str();
   command
@@ -277,41 +284,56 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command->add_option("--targets", flags->targets,
                       "standardized or raw action/beacon targets (default: standardized, raw "
                       "with --authors-recipe)");
-  command->add_option("--lr", flags->learning_rate,
-                      "Adam learning rate (default: the world's recipe: 0.0004, the authors'; "
-                      "tabletop 0.001)");
-  command->add_option("--beacon-weight", flags->beacon_weight,
-                      "weight of RECON's beacon term (default: the world's recipe: 1, the "
-                      "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)");
-  command->add_option("--play-weight", flags->play_weight,
-                      "weight of RECON's play term (default: the world's recipe: 1, the "
-                      "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)");
-  command->add_option("--steps", flags->steps,
-                      "training steps with beacons (default: the world's recipe: 6001, the "
-                      "authors'; tabletop 15000)");
+  command
+      ->add_option("--lr", flags->learning_rate,
+                   "Adam learning rate (default: the world's recipe: 0.0004, the authors'; "
+                   "tabletop 0.001)")
+      ->check(PositiveNumberUpTo(kMaxLearningRate));
+  command
+      ->add_option("--beacon-weight", flags->beacon_weight,
+                   "weight of RECON's beacon term (default: the world's recipe: 1, the "
+                   "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)")
+      ->check(NumberBetween(0, kMaxTermWeight));
+  command
+      ->add_option("--play-weight", flags->play_weight,
+                   "weight of RECON's play term (default: the world's recipe: 1, the "
+                   "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)")
+      ->check(NumberBetween(0, kMaxTermWeight));
+  command
+      ->add_option("--steps", flags->steps,
+                   "training steps with beacons (default: the world's recipe: 6001, the "
+                   "authors'; tabletop 15000)")
+      ->check(WholeBetween(1, kMaxSteps));
   command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")
+      ->check(WholeBetween(1, kMaxSteps))
       ->capture_default_str();
-  command->add_option("--batch", flags->batch, "batch size")->capture_default_str();
-  command->add_option("--play", flags->play,
-                      "play samples per demonstration scenario for play conditions (default: "
-                      "the world's recipe, 3)");
+  command->add_option("--batch", flags->batch, "batch size")
+      ->check(WholeBetween(1, kMaxBatch))
+      ->capture_default_str();
+  command
+      ->add_option("--play", flags->play,
+                   "play samples per demonstration scenario for play conditions (default: "
+                   "the world's recipe, 3)")
+      ->check(WholeBetween(0, kMaxPlay));
   command->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
+      ->check(WholeBetween(1, kMaxFeatureDim))
       ->capture_default_str();
   command
       ->add_option("--random-shift", flags->random_shift,
                    "random-shift augmentation of camera images, pixels (DrQ; 0 = off; default: "
                    "the world's recipe)")
-      ->check(CLI::Range(0, 16));
-  // Range-checked (NaN too) by ValidateExperimentConfig, with the option's name.
-  command->add_option("--feature-noise", flags->feature_noise,
-                      "noise on the features the policy reads while training, in standard "
-                      "deviations of each feature over the batch (0 = off; default: the world's "
-                      "recipe)");
+      ->check(WholeBetween(0, 16));
+  command
+      ->add_option("--feature-noise", flags->feature_noise,
+                   "noise on the features the policy reads while training, in standard "
+                   "deviations of each feature over the batch (0 = off; default: the world's "
+                   "recipe)")
+      ->check(NumberBetween(0, learn::kMaxFeatureNoise));
   command
       ->add_option("--action-chunk", flags->action_chunk,
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
                    "the world's recipe)")
-      ->check(CLI::Range(1, 100));
+      ->check(WholeBetween(1, 100));
   command->add_flag(
       "--spatial-softmax,!--no-spatial-softmax", flags->spatial_softmax,
       "end the CNN in a spatial-softmax keypoint layer (default: the world's recipe)");
@@ -320,7 +342,7 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                     "world's recipe)");
   if (worlds::WorldNeedsRenderer(world)) {
     command->add_option("--image-size", flags->image_size, "camera images are N x N pixels")
-        ->check(CLI::Range(16, 480))
+        ->check(WholeBetween(16, 480))
         ->capture_default_str();
   }
   if (world == "tabletop") {

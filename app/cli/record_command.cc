@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/session_world.h"
 #include "devices/cell/sim_calibration.h"
 #include "engine/calib/calibration.h"
@@ -196,10 +197,10 @@ void AddRecordCommand(CLI::App& app) {
   record->add_option("--placement", flags->placement,
                      "beacon placement for a new session (default: the paper's RECON one)");
   record->add_option("--demos", flags->demos, "demonstrations to record")
-      ->check(CLI::NonNegativeNumber)
+      ->check(WholeBetween(0, kMaxDemos))
       ->capture_default_str();
   record->add_option("--play", flags->play, "play samples to record")
-      ->check(CLI::NonNegativeNumber)
+      ->check(WholeBetween(0, kMaxPlay))
       ->capture_default_str();
   record
       ->add_option("--seed", flags->seed,
@@ -207,19 +208,19 @@ void AddRecordCommand(CLI::App& app) {
                    "(default: the session's)")
       ->capture_default_str();
   record->add_option("--image-size", flags->image_size, "camera images are N x N (tabletop)")
-      ->check(CLI::Range(16, 480))
+      ->check(WholeBetween(16, 480))
       ->capture_default_str();
   record
       ->add_option("--noise", flags->noise,
                    "beacon noise sigma per axis for a new session (default: a DWM1001's 0.07 m "
                    "on the tabletop, 0 elsewhere)")
-      ->check(CLI::Range(0.0, 0.5));
+      ->check(NumberBetween(0, 0.5));
   record
       ->add_option("--demo-noise", flags->demo_noise,
                    "noise injected into the executed joint velocities while demonstrating, for a "
                    "new session (DART; rad/s; 0 = off; default: 0.05 on the tabletop, 0 "
                    "elsewhere)")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(NumberBetween(0, 1));
   record->add_option("--layout", flags->layout,
                      "scene layout of a new tabletop session: paper (default: the plate at one "
                      "of two places, 2 demonstrations per configuration) or wide");

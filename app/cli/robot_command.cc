@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "app/cli/option_checks.h"
 #include "devices/robot/fake_ur_controller.h"
 #include "devices/robot/rtde_client.h"
 #include "devices/robot/tcp_socket.h"
@@ -135,13 +136,13 @@ void AddRobotCommand(CLI::App& app) {
   status->add_option("--host", flags->host, "the robot's IP address or name");
   status->add_option("--rtde-port", flags->rtde_port, "RTDE port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(WholeBetween(1, 65535));
   status->add_option("--script-port", flags->script_port, "URScript (primary interface) port")
       ->capture_default_str()
-      ->check(CLI::Range(1, 65535));
+      ->check(WholeBetween(1, 65535));
   status->add_option("--seconds", flags->seconds, "how long to measure the data rate")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 3600.0));
+      ->check(NumberBetween(0, 3600));
   status->add_flag("--json", flags->json, "one JSON object instead of the table");
   status->add_flag("--fake", flags->fake,
                    "report against a built-in fake UR5 controller on loopback (no robot needed)");

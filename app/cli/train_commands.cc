@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
@@ -144,16 +145,17 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--steps", flags->steps,
                    "training steps (default: the world's recipe: 15000 on the tabletop, 6001 "
                    "elsewhere)")
-      ->check(CLI::PositiveNumber);
+      ->check(WholeBetween(1, kMaxSteps));
   train->add_option("--batch", flags->batch, "batch size")
-      ->check(CLI::PositiveNumber)
+      ->check(WholeBetween(1, kMaxBatch))
       ->capture_default_str();
   train
       ->add_option("--lr", flags->learning_rate,
                    "Adam learning rate (default: the world's recipe: 0.001 on the tabletop, "
                    "0.0004 elsewhere)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumberUpTo(kMaxLearningRate));
   train->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
+      ->check(WholeBetween(1, kMaxFeatureDim))
       ->capture_default_str();
   train->add_option("--loss", flags->loss, "nll (paper) or mse-sample (authors' code)")
       ->capture_default_str();
@@ -170,7 +172,7 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
                    "which checkpoints (default: every trained one)")
       ->delimiter(',');
   eval->add_option("--tests", eval_flags->tests, "test scenarios")
-      ->check(CLI::PositiveNumber)
+      ->check(WholeBetween(1, kMaxTests))
       ->capture_default_str();
   eval->add_option("--seed", eval_flags->seed, "test scenario seed (default: from the session's)");
   eval->callback([eval_flags] { RunEval(*eval_flags); });

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/option_checks.h"
 #include "devices/uwb/beacon_hub.h"
 #include "devices/uwb/fake_dwm1001.h"
 #include "devices/uwb/simulated_dwm1001.h"
@@ -191,13 +192,12 @@ void AddUwbCommand(CLI::App& app) {
                    "lec: stream lines from the PANS shell; tlv: poll loc_get in binary mode")
       ->check(CLI::IsMember({"lec", "tlv"}));
   monitor->add_option("--fake", flags->fake, "also run N built-in fake tags on pseudo-terminals")
-      ->check(CLI::Range(0, 8));
+      ->check(WholeBetween(0, 8));
   monitor->add_option("--name", flags->names,
                       "NODE_ID=NAME: name a tag by its node id (as `si` prints it), repeatable");
-  monitor->add_option("--count", flags->count, "stop after N readings")
-      ->check(CLI::NonNegativeNumber);
+  monitor->add_option("--count", flags->count, "stop after N readings")->check(NonNegativeWhole());
   monitor->add_option("--seconds", flags->seconds, "stop after S seconds")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   monitor->add_flag("--json", flags->json,
                     "one JSON object per reading (t, id, beacon, port, x, y, z, qf, anchors), "
                     "then the counts of each port");

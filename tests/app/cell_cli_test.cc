@@ -170,11 +170,11 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--observation depth", "--observation must be 'image'"},
       {"--random-shift 40", "--random-shift"},
       {"--action-chunk 0", "--action-chunk"},
-      {"--beacon-weight -1", "--beacon-weight must be a finite number >= 0"},
-      {"--play-weight nan", "--play-weight must be a finite number >= 0"},
-      {"--feature-noise -0.5", "--feature-noise must be between 0 and 10"},
-      {"--feature-noise nan", "--feature-noise must be between 0 and 10"},
-      {"--feature-noise 11", "--feature-noise must be between 0 and 10"},
+      {"--beacon-weight -1", "--beacon-weight: must be a number from 0 to 1000"},
+      {"--play-weight nan", "--play-weight: must be a number from 0 to 1000"},
+      {"--feature-noise -0.5", "--feature-noise: must be a number from 0 to 10"},
+      {"--feature-noise nan", "--feature-noise: must be a number from 0 to 10"},
+      {"--feature-noise 11", "--feature-noise: must be a number from 0 to 10"},
   };
   for (const auto& c : cases) {
     const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +

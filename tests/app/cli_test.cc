@@ -57,7 +57,7 @@ TEST(CliTest, ZeroDemosIsRejected) {
   const CommandResult r =
       RunRecon("experiment static2d --demos 0 --out " + FreshDir("zero").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.output, HasSubstr("--demos must be positive"));
+  EXPECT_THAT(r.output, HasSubstr("--demos: must be a whole number from 1 to 10000 (got '0')"));
 }
 
 TEST(CliTest, TorchBackendRunsAndUnknownBackendIsRejected) {
@@ -92,7 +92,7 @@ TEST(CliTest, NegativePlayIsRejected) {
   const CommandResult r =
       RunRecon("experiment static2d --play -3 --out " + FreshDir("play").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.output, HasSubstr("--play must not be negative"));
+  EXPECT_THAT(r.output, HasSubstr("--play: must be a whole number from 0 to 100000 (got '-3')"));
 }
 
 TEST(CliTest, FeatureSizeNotAboveBeaconSizeIsRejected) {

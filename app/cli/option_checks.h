@@ -1,0 +1,51 @@
+#pragma once
+
+// Checks for the numeric command-line options of `recon` and `recon-studio`, in place of CLI11's
+// PositiveNumber / NonNegativeNumber / Range: these refuse NaN and infinity (CLI11's let NaN
+// through, since every comparison with it is false), refuse a fraction or an out-of-range value
+// for a whole-number option before CLI11 converts it (where it would say only "Could not
+// convert"), and say the range in plain numbers (CLI11 prints 1.797...e308 as 309 digits).
+// CLI11 puts the option's name in front: "--steps: must be a whole number from 1 to 2147483647
+// (got 0)".
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+namespace recon::cli {
+
+/// A finite number from `min` to `max` inclusive.
+CLI::Validator NumberBetween(double min, double max);
+/// A finite number > 0.
+CLI::Validator PositiveNumber();
+/// A number > 0 and at most `max`.
+CLI::Validator PositiveNumberUpTo(double max);
+/// A finite number >= 0.
+CLI::Validator NonNegativeNumber();
+/// A whole number from `min` to `max` inclusive (an int option: at most 2147483647).
+CLI::Validator WholeBetween(long long min, long long max);
+/// A whole number from 1 to 2147483647 (a positive int option).
+CLI::Validator PositiveWhole();
+/// A whole number from 0 to 2147483647 (a non-negative int option).
+CLI::Validator NonNegativeWhole();
+
+/// Upper bounds of the counts and sizes the commands take: far above any real use, low enough that
+/// a typo (an extra zero or three) is refused in a second instead of running out of memory or
+/// time. The same for `recon experiment`, `recon train` and `recon-studio`.
+constexpr long long kMaxRuns = 1000;
+constexpr long long kMaxTests = 100000;
+constexpr long long kMaxDemos = 10000;
+constexpr long long kMaxPlay = 100000;
+constexpr long long kMaxSteps = 10000000;
+constexpr long long kMaxBatch = 4096;
+constexpr long long kMaxFeatureDim = 1024;
+constexpr double kMaxLearningRate = 10.0;  ///< Adam diverges far below this
+constexpr double kMaxTermWeight = 1000.0;  ///< a loss term's weight
+
+/// The most threads or parallel jobs an option may ask for: 4 per core (at least 4).
+long long ParallelismLimit();
+
+/// The message a check gives for `text` ("" if it passes); exposed for tests.
+std::string CheckNumber(const std::string& text, double min, double max, bool whole,
+                        bool min_exclusive);
+
+}  // namespace recon::cli
