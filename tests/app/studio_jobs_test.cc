@@ -1,0 +1,76 @@
+// The studio's training job: both methods train on their own threads, and one method's failure
+// neither stops the other nor loses its checkpoint.
+
+#include "app/studio/studio_jobs.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/core/error.h"
+#include "engine/store/session.h"
+#include "tests/app/run_recon.h"
+
+namespace recon::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+fs::path RecordedSession(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("recon_studio_jobs_" + name);
+  fs::remove_all(dir);
+  const testing::CommandResult r = testing::RunRecon("record --session " + dir.string() +
+                                                     " --world static2d --demos 4 --play 6");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return dir;
+}
+
+cli::SessionTrainingOptions QuickTraining(const store::Session& session) {
+  cli::SessionTrainingOptions options;
+  options.steps = 40;
+  options.seed = 3;
+  return cli::WithRecipeDefaults(session, options);
+}
+
+TEST(StudioJobsTest, BothMethodsTrainSideBySideAndBothAreSaved) {
+  const fs::path dir = RecordedSession("both");
+  const store::Session session = store::Session::Open(dir.string());
+  JobThread jobs;
+  const std::vector<ui::TrainingView> views =
+      TrainMethods(jobs, session, QuickTraining(session), {"baseline", "recon"});
+  ASSERT_EQ(views.size(), 2u);
+  for (const ui::TrainingView& view : views) {
+    EXPECT_TRUE(view.done) << view.method;
+    EXPECT_FALSE(view.running) << view.method;
+    EXPECT_EQ(view.step, 40) << view.method;
+    EXPECT_TRUE(fs::exists(dir / "checkpoints" / (view.method + ".ckpt"))) << view.method;
+  }
+  EXPECT_FALSE(views[1].beacon_loss.empty());  // RECON's curve has its beacon term
+  EXPECT_TRUE(views[0].beacon_loss.empty());
+}
+
+TEST(StudioJobsTest, AFailingMethodIsReportedAndTheOtherKeepsItsCheckpoint) {
+  const fs::path dir = RecordedSession("one_fails");
+  const store::Session session = store::Session::Open(dir.string());
+  JobThread jobs;
+  try {
+    TrainMethods(jobs, session, QuickTraining(session), {"baseline", "nonsense"});
+    ADD_FAILURE() << "an unknown method trained";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("nonsense"));
+  }
+  const std::vector<ui::TrainingView> views = jobs.Peek().training;
+  ASSERT_EQ(views.size(), 2u);
+  EXPECT_TRUE(views[0].done);
+  EXPECT_FALSE(views[1].done);
+  EXPECT_FALSE(views[1].running);
+  EXPECT_TRUE(fs::exists(dir / "checkpoints" / "baseline.ckpt"));
+  EXPECT_FALSE(fs::exists(dir / "checkpoints" / "nonsense.ckpt"));
+}
+
+}  // namespace
+}  // namespace recon::studio
