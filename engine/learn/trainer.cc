@@ -140,64 +140,6 @@ void TrainerImpl::GatherBatch() {
   }
 }
 
-void TrainerImpl::FusedForward(StepMetrics& m) {
-  const float* params = params_.data();
-  const int batch = train_.batch_size;
-  const DataSpec& s = data_.spec;
-  ForwardFeatures(arch_, params, demo_);
-  if (train_.feature_noise > 0) {
-    FeatureNoiseOffsets(demo_.phi(), batch, arch_.feature_dim(), train_.feature_noise,
-                        feature_noise_.data(), phi_offsets_.data());
-    ForwardPolicy(arch_, params, demo_, phi_offsets_.data());
-  } else {
-    ForwardPolicy(arch_, params, demo_);
-  }
-  // With a chunk of k actions the head's loss sums k actions' terms: per action (divided by k)
-  // it weighs against the beacon term as a single action does.
-  const float chunk = static_cast<float>(network_.action_chunk);
-  m.action_loss =
-      HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(), batch,
-               arch_.action_width(), static_cast<float>(train_.action_weight) / chunk,
-               grad_policy_head_.data()) /
-      chunk;
-  if (arch_.has_beacon_net()) {
-    ForwardBeacon(arch_, params, demo_);
-    m.beacon_loss =
-        HeadLoss(train_.loss, demo_.beacon_head(), target_b_.data(), noise_b_.data(), batch,
-                 s.b_dim, static_cast<float>(train_.beacon_weight), grad_beacon_head_.data());
-  }
-  if (UsesPlay()) {
-    ForwardFeatures(arch_, params, play_);
-    ForwardBeacon(arch_, params, play_);
-    m.play_loss =
-        HeadLoss(train_.loss, play_.beacon_head(), target_play_.data(), noise_play_.data(), batch,
-                 s.b_dim, static_cast<float>(train_.play_weight), grad_play_head_.data());
-  }
-}
-
-void TrainerImpl::FusedBackward() {
-  const float* params = params_.data();
-  Backward(arch_, params, grad_policy_head_.data(),
-           arch_.has_beacon_net() ? grad_beacon_head_.data() : nullptr, demo_, grads_.data());
-  if (UsesPlay()) {
-    Backward(arch_, params, nullptr, grad_play_head_.data(), play_, grads_.data());
-  }
-}
-
-TorchBatch TrainerImpl::MakeTorchBatch() const {
-  TorchBatch b;
-  b.demo = &demo_;
-  b.play = UsesPlay() ? &play_ : nullptr;
-  b.target_u = target_u_.data();
-  b.target_b = target_b_.data();
-  b.target_play = target_play_.data();
-  b.noise_u = noise_u_.data();
-  b.noise_b = noise_b_.data();
-  b.noise_play = noise_play_.data();
-  b.feature_noise = train_.feature_noise > 0 ? feature_noise_.data() : nullptr;
-  return b;
-}
-
 void TrainerImpl::Step() {
   // Everything that can fail is done before the first write to the trainer's state, so that a
   // DivergenceError leaves weights, optimizer and generators as they were before the step.

@@ -1,7 +1,7 @@
 #pragma once
 
-// The trainer's state and one training step. Internal: trainer.cc drives it, checkpoint.cc
-// saves and restores it.
+// The trainer's state and one training step. Internal: trainer.cc drives it (the step's backend
+// half is in trainer_step.cc), checkpoint.cc saves and restores it.
 
 #include <functional>
 #include <memory>
@@ -71,8 +71,8 @@ class TrainerImpl {
   bool UsesPlay() const;
   bool NeedsRestart();
   void GatherBatch();
-  // The backend-specific half of Step: the unweighted losses into `m`, then dLoss/dparams
-  // added into grads_ (zeroed by the caller).
+  // The backend-specific half of Step (trainer_step.cc): the unweighted losses into `m`, then
+  // dLoss/dparams added into grads_ (zeroed by the caller).
   void FusedForward(StepMetrics& m);
   void FusedBackward();
   TorchBatch MakeTorchBatch() const;
