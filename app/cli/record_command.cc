@@ -90,32 +90,19 @@ void RunRecord(const RecordFlags& flags, const CLI::App& command) {
       std::printf("removed %d unfinished episode file(s) left by an interrupted recording\n",
                   session->recovered_temporaries());
     }
+    setup.beacon_noise_sigma = m.beacon_noise_sigma;
   } else {
-    if (flags.world.empty()) {
-      throw UserError(flags.session + " is not a session yet: give --world (" +
-                      JoinNames(worlds::WorldNames()) + ") to start one");
-    }
-    setup.world_name = flags.world;
-    setup.placement =
-        flags.placement.empty() ? teach::DefaultTeachingPlacement(flags.world) : flags.placement;
-    setup.image_size = flags.image_size;
-    setup.seed = flags.seed;
-    setup.layout = worlds::ChooseLayout(flags.world, flags.layout, "--layout");
-    setup.beacon_noise_sigma =
-        command.count("--noise") > 0 ? flags.noise : worlds::DefaultBeaconNoise(flags.world);
-    setup.demo_noise_sigma = command.count("--demo-noise") > 0
-                                 ? flags.demo_noise
-                                 : worlds::DefaultDemoNoise(flags.world);
+    NewSessionOptions options;
+    options.world = flags.world;
+    options.placement = flags.placement;
+    options.layout = flags.layout;
+    if (command.count("--noise") > 0) options.beacon_noise = flags.noise;
+    if (command.count("--demo-noise") > 0) options.demo_noise = flags.demo_noise;
+    options.image_size = flags.image_size;
+    options.seed = flags.seed;
+    setup = NewSessionSetup(options, flags.session);
   }
-
-  store::SessionManifest probe;
-  probe.world = setup.world_name;
-  probe.placement = setup.placement;
-  probe.image_size = setup.image_size;
-  probe.layout = setup.layout;
-  probe.beacon_noise_sigma =
-      exists ? session->manifest().beacon_noise_sigma : setup.beacon_noise_sigma;
-  const std::unique_ptr<worlds::World> world = MakeSessionWorld(probe, setup.placement);
+  const std::unique_ptr<worlds::World> world = MakeSetupWorld(setup);
   {
     const int n = world->DemosPerConfiguration();
     if (n > 1) {

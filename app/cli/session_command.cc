@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/session_repair.h"
 #include "app/cli/session_summary.h"
 #include "engine/core/error.h"
 #include "engine/store/robomimic_io.h"
@@ -197,6 +198,8 @@ void AddSessionCommands(CLI::App& app) {
   imp->add_option("--y-key", imp_flags->y_key, "obs key of the observation (image or vector)");
   imp->add_option("--beacon-keys", imp_flags->beacon_keys, "obs keys holding beacon readings")
       ->delimiter(',');
+
+  AddSessionRepairCommand(*session);
 }
 
 }  // namespace recon::cli

@@ -1,9 +1,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "engine/store/manifest.h"
+#include "engine/teach/session_setup.h"
 #include "engine/worlds/world.h"
 
 namespace recon::cli {
@@ -13,5 +15,23 @@ namespace recon::cli {
 /// beacons are removed). UserError for sessions that have no simulated world (imported ones).
 std::unique_ptr<worlds::World> MakeSessionWorld(const store::SessionManifest& manifest,
                                                 const std::string& placement);
+
+/// The options that describe a new session's cell (`recon record`, `recon session repair`).
+/// Empty strings and absent numbers take the world's defaults.
+struct NewSessionOptions {
+  std::string world;
+  std::string placement;
+  std::string layout;
+  std::optional<double> beacon_noise;
+  std::optional<double> demo_noise;
+  int image_size = 64;
+  uint64_t seed = 1;
+};
+
+/// The setup those options give; UserError for a missing world or an unknown layout.
+teach::SessionSetup NewSessionSetup(const NewSessionOptions& options, const std::string& folder);
+
+/// The simulated world a setup records in.
+std::unique_ptr<worlds::World> MakeSetupWorld(const teach::SessionSetup& setup);
 
 }  // namespace recon::cli

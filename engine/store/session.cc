@@ -50,6 +50,21 @@ bool IsTemporary(const std::string& file_name) {
   return file_name.find(".tmp.") != std::string::npos;
 }
 
+/// Committed episode files (demo_N.h5, play_N.h5) in `dir`'s episode folders.
+int CountEpisodeFiles(const std::string& dir) {
+  int count = 0;
+  std::error_code ec;
+  for (const auto& [folder, prefix] :
+       {std::pair{kDemoFolder, "demo_"}, std::pair{kPlayFolder, "play_"}}) {
+    const fs::path folder_path = fs::path(dir) / folder;
+    if (!fs::is_directory(folder_path, ec)) continue;
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder_path, ec)) {
+      if (EpisodeNumber(entry.path().filename().string(), prefix) >= 0) ++count;
+    }
+  }
+  return count;
+}
+
 std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError("cannot read " + path);
@@ -88,7 +103,41 @@ Session Session::Create(const std::string& dir, const SessionManifest& manifest)
     throw UserError(dir + " already holds a teaching session (" + kManifestName +
                     "); open it to append, or choose another folder");
   }
+  std::error_code ec;
+  const bool existed = fs::exists(dir, ec);
+  if (existed && fs::is_directory(dir, ec) && !fs::is_empty(dir, ec)) {
+    // A session whose manifest was lost still holds the teacher's episodes: a new session here
+    // would number its takes from demo_0 again and replace them.
+    const int episodes = CountEpisodeFiles(dir);
+    if (episodes > 0) {
+      throw UserError(dir + " holds " + std::to_string(episodes) + " episode file(s) but no " +
+                      kManifestName +
+                      ": its manifest is missing. Nothing was changed. Rebuild the manifest "
+                      "with `recon session repair " +
+                      dir +
+                      " --world W` (W the world it was recorded in), or choose another "
+                      "folder");
+    }
+    throw UserError(dir + " is not empty and holds no teaching session (no " + kManifestName +
+                    "); a new session needs a new or empty folder. Nothing was changed");
+  }
   EnsureWritableDirectory(dir);
+  try {
+    return CreateIn(dir, manifest);
+  } catch (...) {
+    // A half-made session would be taken for a real one by the next command: undo it.
+    if (!existed) {
+      fs::remove_all(dir, ec);
+    } else {
+      for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+        fs::remove_all(entry.path(), ec);
+      }
+    }
+    throw;
+  }
+}
+
+Session Session::CreateIn(const std::string& dir, const SessionManifest& manifest) {
   Session session;
   session.dir_ = dir;
   session.manifest_ = manifest;
@@ -96,6 +145,42 @@ Session Session::Create(const std::string& dir, const SessionManifest& manifest)
   session.RequireWritable();
   fs::create_directories(session.Path(kDemoFolder));
   fs::create_directories(session.Path(kPlayFolder));
+  session.SaveManifestNow();
+  session.RebuildIndex();
+  return session;
+}
+
+Session Session::Repair(const std::string& dir, SessionManifest manifest) {
+  if (Exists(dir)) {
+    throw UserError(dir + " has its " + kManifestName + "; there is nothing to repair");
+  }
+  if (!fs::is_directory(dir) || CountEpisodeFiles(dir) == 0) {
+    throw UserError(dir +
+                    " holds no episode files (episodes/demo_N.h5, play/play_N.h5); there "
+                    "is no session to repair there");
+  }
+  Session session;
+  session.dir_ = dir;
+  session.manifest_ = manifest;
+  session.access_ = Access::kReadWrite;
+  session.RequireWritable();
+  // Every episode must agree with the manifest given, or the repair would make a session whose
+  // episodes read as damaged: check them all before writing anything.
+  session.Scan();
+  std::string earliest;
+  for (const std::vector<EpisodeEntry>* list : {&session.demos_, &session.play_}) {
+    for (const EpisodeEntry& e : *list) {
+      if (!e.problem.empty()) {
+        throw UserError("cannot repair " + dir + " as a " + manifest.world +
+                        " session: " + e.problem + ". Nothing was changed");
+      }
+      if (earliest.empty() || e.meta.recorded_at < earliest) earliest = e.meta.recorded_at;
+    }
+  }
+  if (!earliest.empty()) session.manifest_.created_at = earliest;
+  if (fs::exists(session.Path("calibration.json"))) {
+    session.manifest_.calibration_file = "calibration.json";
+  }
   session.SaveManifestNow();
   session.RebuildIndex();
   return session;

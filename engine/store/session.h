@@ -52,9 +52,16 @@ class Session {
  public:
   enum class Access { kReadOnly, kReadWrite };
 
-  /// Makes a new session in `dir` (created if needed; it must not already hold a session).
-  /// UserError if the folder cannot be written.
+  /// Makes a new session in `dir`, which must be new or empty. UserError if the folder cannot
+  /// be written, holds a session, or holds anything else (episode files without a manifest are
+  /// a damaged session: see Repair). If creating fails part-way, what it made is removed.
   static Session Create(const std::string& dir, const SessionManifest& manifest);
+  /// Gives a session that lost its session.json a new one: `manifest` describes the world the
+  /// episodes were recorded in (as Create would get it); every episode file must agree with it
+  /// (shapes, kinds), else UserError naming the file and nothing is written. The episodes' flags
+  /// (bad, split, notes) were in the lost manifest and come back as defaults; the creation time
+  /// is the earliest episode's, and calibration.json is attached if present.
+  static Session Repair(const std::string& dir, SessionManifest manifest);
   /// Opens an existing session. kReadWrite also takes the writer lock, removes temporary files
   /// left by a killed writer (counted in recovered_temporaries()) and rebuilds a stale index.
   /// UserError naming the file and field for a missing or corrupt manifest, an episode file that
@@ -124,6 +131,7 @@ class Session {
 
  private:
   Session() = default;
+  static Session CreateIn(const std::string& dir, const SessionManifest& manifest);
   void RequireWritable() const;
   void Scan();
   void SaveManifestNow() const;

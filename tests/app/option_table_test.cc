@@ -55,19 +55,37 @@ std::vector<OptionCase> NumericOptions() {
   const fs::path out = OutDir();
   const std::string exp = "experiment tabletop --out " + (out / "exp").string() + " ";
   const std::string train = "train --session " + (out / "missing").string() + " ";
-  const std::string record = "record --world static2d --out " + (out / "rec").string() + " ";
+  const std::string record = "record --world static2d --session " + (out / "rec").string() + " ";
+  const std::string repair = "session repair " + (out / "rep").string() + " --world dynamic2d ";
   return {
-      {exp, "--demos", true},        {exp, "--runs", true},
-      {exp, "--tests", true},        {exp, "--jobs", true},
-      {exp, "--steps", true},        {exp, "--baseline-steps", true},
-      {exp, "--batch", true},        {exp, "--play", true},
-      {exp, "--feature-dim", true},  {exp, "--random-shift", true},
-      {exp, "--action-chunk", true}, {exp, "--image-size", true},
-      {exp, "--lr", false},          {exp, "--beacon-weight", false},
-      {exp, "--play-weight", false}, {exp, "--feature-noise", false},
-      {train, "--steps", true},      {train, "--batch", true},
-      {train, "--lr", false},        {train, "--feature-dim", true},
-      {record, "--demos", true},     {record, "--play", true},
+      {exp, "--demos", true},
+      {exp, "--runs", true},
+      {exp, "--tests", true},
+      {exp, "--jobs", true},
+      {exp, "--steps", true},
+      {exp, "--baseline-steps", true},
+      {exp, "--batch", true},
+      {exp, "--play", true},
+      {exp, "--feature-dim", true},
+      {exp, "--random-shift", true},
+      {exp, "--action-chunk", true},
+      {exp, "--image-size", true},
+      {exp, "--lr", false},
+      {exp, "--beacon-weight", false},
+      {exp, "--play-weight", false},
+      {exp, "--feature-noise", false},
+      {train, "--steps", true},
+      {train, "--batch", true},
+      {train, "--lr", false},
+      {train, "--feature-dim", true},
+      {record, "--demos", true},
+      {record, "--play", true},
+      {record, "--noise", false},
+      {record, "--demo-noise", false},
+      {record, "--image-size", true},
+      {repair, "--noise", false},
+      {repair, "--demo-noise", false},
+      {repair, "--image-size", true},
       {"--threads", "", true},
   };
 }
@@ -92,7 +110,7 @@ TEST_P(OptionTableTest, RefusesNanInfinityHugeNegativeAndText) {
     EXPECT_THAT(r.output, Not(HasSubstr("e+308"))) << args;
   }
   // Nothing ran, so nothing was written.
-  for (const char* written : {"exp", "missing", "rec"}) {
+  for (const char* written : {"exp", "missing", "rec", "rep"}) {
     EXPECT_FALSE(fs::exists(OutDir() / written)) << written;
   }
 }
