@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/cli/option_checks.h"
+#include "app/cli/output_path.h"
 #include "devices/camera/camera_calibration_file.h"
 #include "devices/camera/camera_pose.h"
 #include "devices/camera/image_file.h"
@@ -33,6 +34,7 @@ struct CameraFlags {
   int min_tags = 2;
   bool undistort = false;
   bool json = false;
+  bool force = false;
 };
 
 std::optional<camera::CameraCalibration> LoadCalibration(const CameraFlags& flags) {
@@ -126,6 +128,9 @@ void RunGrab(const CameraFlags& flags) {
   }
   camera::OpenCameraOptions options;
   if (flags.undistort) options.undistort = LoadCalibration(flags);
+  for (int i = 0; i < flags.count; ++i) {
+    CheckOutputFile("--out", FramePath(flags.out, i, flags.count), flags.force);
+  }
   const std::unique_ptr<devices::Camera> cam = camera::OpenCamera(flags.device, options);
   for (int i = 0; i < flags.count; ++i) {
     const devices::CameraFrame frame = cam->Capture();
@@ -196,6 +201,7 @@ void AddCameraCommand(CLI::App& app) {
   grab->add_option("--device", flags->device, device_help)->required();
   grab->add_option("--out", flags->out, "image to write (.png or .jpg); several get _0000, ...")
       ->required();
+  AddForceFlag(*grab, flags->force);
   grab->add_option("--count", flags->count, "frames to save")
       ->capture_default_str()
       ->check(WholeBetween(1, 100000));

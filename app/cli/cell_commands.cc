@@ -8,6 +8,7 @@
 
 #include "app/cli/device_calibrate.h"
 #include "app/cli/option_checks.h"
+#include "app/cli/output_path.h"
 #include "devices/cell/sim_calibration.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/calib/calibration.h"
@@ -31,9 +32,11 @@ struct RenderFlags {
   int width = 640;
   int height = 480;
   std::string out;
+  bool force = false;
 };
 
 void RunRender(const RenderFlags& flags) {
+  CheckOutputFile("--out", flags.out, flags.force);
   // Every renderer the factory makes on this thread shares one EGL context, the world's too.
   const worlds::SceneRendererFactory make_renderer = render::MujocoRendererFactory();
   const std::unique_ptr<worlds::SceneRenderer> renderer = make_renderer();
@@ -72,9 +75,11 @@ struct CalibrateFlags {
   std::string dimension = "2d";
   double threshold_m = 0.10;
   std::string out;
+  bool force = false;
 };
 
 void RunCalibrate(const CalibrateFlags& flags) {
+  if (!flags.out.empty()) CheckOutputFile("--out", flags.out, flags.force);
   cell::SimCalibrationOptions options;
   options.points = flags.points;
   options.seed = flags.seed;
@@ -123,9 +128,14 @@ void AddCellCommands(CLI::App& app) {
                      "camera name (default: top; overhead for bintransfer)");
   render->add_option("--seed", render_flags->seed, "scenario seed (tabletop, bintransfer layout)")
       ->capture_default_str();
-  render->add_option("--width", render_flags->width, "image width")->capture_default_str();
-  render->add_option("--height", render_flags->height, "image height")->capture_default_str();
+  render->add_option("--width", render_flags->width, "image width")
+      ->check(WholeBetween(1, kMaxImageSide))
+      ->capture_default_str();
+  render->add_option("--height", render_flags->height, "image height")
+      ->check(WholeBetween(1, kMaxImageSide))
+      ->capture_default_str();
   render->add_option("--out", render_flags->out, "PNG file to write")->required();
+  AddForceFlag(*render, render_flags->force);
   render->callback([render_flags] { RunRender(*render_flags); });
 
   auto cal_flags = std::make_shared<CalibrateFlags>();
@@ -143,6 +153,7 @@ void AddCellCommands(CLI::App& app) {
       ->check(PositiveNumber())
       ->capture_default_str();
   calibrate->add_option("--out", cal_flags->out, "save the calibration (JSON) here");
+  AddForceFlag(*calibrate, cal_flags->force);
   DeviceCalibrateFlags& device = cal_flags->device;
   calibrate->add_option("--camera", device.camera,
                         "real devices: the camera (/dev/videoN, index, video file, image folder)");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/cli/option_checks.h"
+#include "app/cli/output_path.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -199,6 +200,7 @@ void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOpti
   const std::string out = flags.out.empty() ? DefaultOutDir(flags.world) : flags.out;
   // Fail before an hour of training, not after: the folder must be writable, and results of an
   // earlier experiment are never replaced unless asked.
+  CheckOutputFolder("--out", out, flags.force, "summary.json");
   if (fs::exists(fs::path(out) / "summary.json") && !flags.force) {
     throw UserError(out +
                     " already holds an experiment's results (summary.json); choose "

@@ -40,6 +40,7 @@ constexpr long long kMaxBatch = 4096;
 constexpr long long kMaxFeatureDim = 1024;
 constexpr double kMaxLearningRate = 10.0;  ///< Adam diverges far below this
 constexpr double kMaxTermWeight = 1000.0;  ///< a loss term's weight
+constexpr long long kMaxImageSide = 8192;  ///< a rendered image's width or height (EGL limits)
 
 /// The most threads or parallel jobs an option may ask for: 4 per core (at least 4).
 long long ParallelismLimit();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/output_path.h"
 #include "app/cli/session_repair.h"
 #include "app/cli/session_summary.h"
 #include "engine/core/error.h"
@@ -26,6 +27,7 @@ struct SessionFlags {
   std::vector<std::string> episodes;
   std::string out;
   bool include_bad = false;
+  bool force = false;
   bool no_play = false;
   bool no_next_obs = false;
   bool bad = false;
@@ -116,6 +118,7 @@ void RunSplit(const SessionFlags& flags) {
 }
 
 void RunExport(const SessionFlags& flags) {
+  CheckOutputFile("--out", flags.out, flags.force);
   const store::Session session = store::Session::Open(flags.dir, store::Session::Access::kReadOnly);
   store::ExportOptions options;
   options.include_bad = flags.include_bad;
@@ -185,6 +188,7 @@ void AddSessionCommands(CLI::App& app) {
   auto [exp, exp_flags] = add("export", "write one robomimic HDF5 file", RunExport);
   exp->add_option("dir", exp_flags->dir, "session folder")->required();
   exp->add_option("--out", exp_flags->out, "the .hdf5 file to write")->required();
+  AddForceFlag(*exp, exp_flags->force);
   exp->add_flag("--include-bad", exp_flags->include_bad, "also export bad demonstrations");
   exp->add_flag("--no-play", exp_flags->no_play, "leave play data out");
   exp->add_flag("--no-next-obs", exp_flags->no_next_obs,

@@ -1,5 +1,6 @@
 #include "app/cli/train_commands.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -51,6 +52,17 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
   options.loss = flags.loss;
   options.use_play = !flags.no_play;
   options.include_bad = flags.include_bad;
+  // Every episode any method will read is read once before the first checkpoint is replaced: a
+  // damaged play chunk must not surface after the Baseline's checkpoint was already rewritten.
+  {
+    store::DatasetOptions everything;
+    everything.split = store::Split::kAll;
+    everything.include_bad = flags.include_bad;
+    everything.include_play =
+        options.use_play &&
+        std::find(flags.methods.begin(), flags.methods.end(), "recon") != flags.methods.end();
+    session.LoadDataset(everything);
+  }
   std::string names;
   for (const std::string& m : flags.methods) names += (names.empty() ? "" : ",") + m;
   std::printf("recon train: session %s (%s), methods %s, training seed %llu\n",
@@ -107,6 +119,16 @@ void RunEval(const EvalFlags& flags) {
   }
   for (const std::string& method : methods) learn::ParseMethod(method);
   MakeSessionWorld(m, "none");  // fails early for sessions without a simulated world
+  // Every checkpoint is loaded (and so checked) before the first rollout file is replaced.
+  for (const std::string& method : methods) {
+    const std::string checkpoint =
+        (fs::path(flags.session) / "checkpoints" / (method + ".ckpt")).string();
+    if (!fs::exists(checkpoint)) {
+      throw UserError("no checkpoint " + checkpoint + ": run `recon train --session " +
+                      flags.session + " --methods " + method + "` first; no rollouts were written");
+    }
+    learn::LoadPolicy(checkpoint);
+  }
   // Test scenarios come from their own seed stream: never the scenarios taught.
   const uint64_t seed = flags.seed != 0 ? flags.seed : DefaultTestSeed(session);
   std::printf(

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -20,6 +21,11 @@
 
 namespace recon {
 namespace {
+
+std::string ReadFileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 using camera::testing::BarIndex;
 using camera::testing::ScratchDir;
@@ -83,6 +89,16 @@ TEST(CameraCliTest, GrabSavesNumberedFramesFromAFolderAndUndistorts) {
     ASSERT_FALSE(saved.empty()) << path;
     EXPECT_EQ(BarIndex(camera::RgbFromMat(saved, path)), i);
   }
+  // Grabbing again over the saved frames needs --force; without it nothing is touched.
+  const std::string first = ReadFileBytes(dir / "out_0000.png");
+  r = testing::RunRecon("camera grab --device " + (dir / "frames") + " --out " + (dir / "out.png") +
+                        " --count 3");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("out_0000.png already exists"));
+  EXPECT_EQ(ReadFileBytes(dir / "out_0000.png"), first);
+  r = testing::RunRecon("camera grab --device " + (dir / "frames") + " --out " + (dir / "out.png") +
+                        " --count 3 --force");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
 
   camera::WriteCameraCalibration(dir / "cam.yaml", BarCalibration({-0.4, 0.1, 0, 0, 0}));
   r = testing::RunRecon("camera grab --device " + (dir / "frames") + " --out " +

@@ -198,3 +198,51 @@ TEST_F(SessionCliTest, TabletopProtocolMismatchesAreRefusedAndChangeNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace recon::session_cli_testing;  // NOLINT: the fixture and its helpers
+
+std::map<std::string, std::string> FolderBytes(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    files[entry.path().filename().string()] = ReadBytes(entry.path());
+  }
+  return files;
+}
+
+void TruncateToHalf(const fs::path& file) { fs::resize_file(file, fs::file_size(file) / 2); }
+
+// Train and eval read everything they need before they replace the first result.
+TEST_F(SessionCliTest, ADamagedInputIsFoundBeforeAnyResultIsReplaced) {
+  const fs::path session = Path("s");
+  ASSERT_EQ(Record(session, "--world dynamic2d --demos 3 --play 4").exit_code, 0);
+  CommandResult r = RunRecon("train --session " + session.string() + " --steps 50");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("eval --session " + session.string() + " --tests 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto checkpoints = FolderBytes(session / "checkpoints");
+  const auto training = FolderBytes(session / "training");
+  const auto rollouts = FolderBytes(session / "rollouts");
+  ASSERT_EQ(checkpoints.size(), 2u);
+
+  // A damaged play chunk: only RECON reads play, and the Baseline trains first.
+  const fs::path play = session / "play" / "play_1.h5";
+  const std::string play_bytes = ReadBytes(play);
+  TruncateToHalf(play);
+  r = RunRecon("train --session " + session.string() + " --steps 60");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(play.string()));
+  EXPECT_EQ(FolderBytes(session / "checkpoints"), checkpoints);
+  EXPECT_EQ(FolderBytes(session / "training"), training);
+  std::ofstream(play, std::ios::binary | std::ios::trunc) << play_bytes;
+
+  // A damaged RECON checkpoint: the Baseline's rollouts come first.
+  TruncateToHalf(session / "checkpoints" / "recon.ckpt");
+  r = RunRecon("eval --session " + session.string() + " --tests 3");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("recon.ckpt"));
+  EXPECT_EQ(FolderBytes(session / "rollouts"), rollouts);
+}
+
+}  // namespace
