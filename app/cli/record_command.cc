@@ -56,6 +56,10 @@ void CalibrateNewCell(store::Session& session, uint64_t seed) {
   const cell::SimCalibrationResult result =
       cell::RunSimulatedCalibration(options, [&](int, int) { progress.Advance(); });
   progress.Finish();
+  for (const Eigen::Vector2d& p : result.replaced_unseen) {
+    std::printf("calibration: the camera did not see the beacon's tag at (%.3f, %.3f); moved it\n",
+                p.x(), p.y());
+  }
   const std::string path = (fs::path(session.dir()) / "calibration.json").string();
   calib::SaveCalibration(result.report, path);
   session.AttachCalibration(path);

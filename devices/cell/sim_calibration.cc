@@ -79,22 +79,29 @@ SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& option
   double tag_sq_error = 0.0;
   std::vector<calib::CalibrationPoint> points;
   for (int i = 0; i < options.points; ++i) {
-    mjtNum* plate_pos = d->mocap_pos + 3 * m->body_mocapid[plate];
-    plate_pos[0] = pose_rng.Uniform(kMinX, kMaxX);
-    plate_pos[1] = pose_rng.Uniform(-kMaxAbsY, kMaxAbsY - 0.13);  // the beacon sits at +13 cm y
-    mj_forward(m, d);
-    const Eigen::Vector3d truth = Vec(d->site_xpos + 3 * beacon_site);
-
-    const RgbImage frame =
-        renderer->Render(scene, kCamera, options.camera_width, options.camera_height);
-    const std::optional<tags::TagLocation> located =
-        LocateTag(detector, locator, frame, kBeaconTagId);
-    if (!located) {
-      char where[96];
-      std::snprintf(where, sizeof(where), "(%.3f, %.3f)", truth.x(), truth.y());
-      throw UserError(std::string("calibration point ") + std::to_string(i + 1) +
-                      ": the camera does not see the beacon's tag " + std::to_string(kBeaconTagId) +
-                      " at " + where);
+    Eigen::Vector3d truth;
+    std::optional<tags::TagLocation> located;
+    for (int placement = 0; !located; ++placement) {
+      if (placement == kPlacementsPerPoint) {
+        char where[96];
+        std::snprintf(where, sizeof(where), "(%.3f, %.3f)", truth.x(), truth.y());
+        throw UserError(std::string("calibration point ") + std::to_string(i + 1) +
+                        ": the camera did not see the beacon's tag " +
+                        std::to_string(kBeaconTagId) + " at any of " +
+                        std::to_string(kPlacementsPerPoint) + " places (the last " + where +
+                        "): check that the camera sees the table");
+      }
+      mjtNum* plate_pos = d->mocap_pos + 3 * m->body_mocapid[plate];
+      plate_pos[0] = pose_rng.Uniform(kMinX, kMaxX);
+      plate_pos[1] = pose_rng.Uniform(-kMaxAbsY, kMaxAbsY - 0.13);  // the beacon sits at +13 cm y
+      mj_forward(m, d);
+      truth = Vec(d->site_xpos + 3 * beacon_site);
+      const RgbImage frame =
+          renderer->Render(scene, kCamera, options.camera_width, options.camera_height);
+      located = LocateTag(detector, locator, frame, kBeaconTagId);
+      // Unseen (out of the camera's view, or hidden): move the beacon, as a teacher
+      // would, and say so.
+      if (!located) result.replaced_unseen.emplace_back(truth.x(), truth.y());
     }
 
     std::vector<uwb::UwbReading> readings;
@@ -155,6 +162,13 @@ std::string Describe(const SimCalibrationResult& result) {
   std::ostringstream out;
   out << result.report.Summary() << "\n";
   char line[256];
+  for (const Eigen::Vector2d& p : result.replaced_unseen) {
+    std::snprintf(line, sizeof(line),
+                  "the camera did not see the beacon's tag at (%.3f, %.3f): the beacon was moved "
+                  "to another place\n",
+                  p.x(), p.y());
+    out << line;
+  }
   std::snprintf(line, sizeof(line),
                 "hidden UWB frame recovered: offset error over the table mean %.4f m, max %.4f m; "
                 "heading error %.2f deg\n",

@@ -39,7 +39,13 @@ struct SimCalibrationResult {
   /// Tag detection vs the simulator's truth, over the collected poses (metres, RMS).
   double tag_rms_error_m = 0;
   int64_t uwb_lines = 0, uwb_malformed = 0, uwb_dropped = 0, uwb_garbled = 0;
+  /// Places (table x, y) where the camera could not see the beacon's tag, so the beacon was put
+  /// somewhere else, as a teacher would move it (in the order they happened).
+  std::vector<Eigen::Vector2d> replaced_unseen;
 };
+
+/// How many places a calibration point is tried at before the calibration gives up on it.
+constexpr int kPlacementsPerPoint = 20;
 
 using CalibrationProgress = std::function<void(int done, int total)>;
 
@@ -47,8 +53,10 @@ using CalibrationProgress = std::function<void(int done, int total)>;
 /// plate) is put at `points` places; at each the top-down camera's AprilTag gives its table
 /// position and one second of DWM1001 `lec` lines, printed by SimulatedDwm1001 with its hidden
 /// table-to-UWB pose and parsed by LecLineParser, gives its UWB position; then the rigid fit.
-/// Throws UserError when the tag is not seen at a pose, the UWB gives no position, or the
-/// renderer cannot be made.
+/// A place where the camera does not see the tag (occluded, out of view) is not fatal: the
+/// beacon goes to another random place and the skipped one is listed in replaced_unseen.
+/// Throws UserError when the tag is not seen at kPlacementsPerPoint places for one point, the
+/// UWB gives no position, or the renderer cannot be made.
 SimCalibrationResult RunSimulatedCalibration(const SimCalibrationOptions& options,
                                              const CalibrationProgress& progress = {});
 

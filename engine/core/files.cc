@@ -1,6 +1,7 @@
 #include "engine/core/files.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -18,6 +19,35 @@ std::string TemporarySibling(const std::string& path) {
   return path + ".tmp." + std::to_string(getpid());
 }
 
+bool IsTemporaryOfDeadWriter(const std::string& file_name) {
+  const size_t at = file_name.rfind(".tmp.");
+  if (at == std::string::npos) return false;
+  const std::string digits = file_name.substr(at + 5);
+  if (digits.empty() || digits.size() > 9 ||
+      digits.find_first_not_of("0123456789") != std::string::npos) {
+    return false;
+  }
+  const pid_t pid = static_cast<pid_t>(std::stol(digits));
+  return pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH;
+}
+
+int RemoveDeadTemporariesIn(const std::string& folder, const std::string& prefix) {
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !IsTemporaryOfDeadWriter(name)) continue;
+    if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
+int RemoveDeadTemporariesOf(const std::string& path) {
+  const std::filesystem::path target(path);
+  return RemoveDeadTemporariesIn(target.parent_path().empty() ? "." : target.parent_path().string(),
+                                 target.filename().string() + ".tmp.");
+}
+
 void ReplaceFile(const std::string& from, const std::string& to) {
   if (std::rename(from.c_str(), to.c_str()) != 0) {
     const std::string reason = std::strerror(errno);
@@ -27,6 +57,7 @@ void ReplaceFile(const std::string& from, const std::string& to) {
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& content) {
+  RemoveDeadTemporariesOf(path);
   const std::string tmp = TemporarySibling(path);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw UserError("cannot write " + path + ": " + std::strerror(errno));

@@ -13,8 +13,18 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 /// UserError naming the folder otherwise. Call before long work so it fails fast.
 void EnsureWritableDirectory(const std::string& dir);
 
-/// A path of a temporary file next to `path` (same folder, so rename is atomic).
+/// A path of a temporary file next to `path` (same folder, so rename is atomic):
+/// "<path>.tmp.<pid of the writer>".
 std::string TemporarySibling(const std::string& path);
+
+/// True when `file_name` is a TemporarySibling whose writer process no longer runs (it was
+/// killed before its rename): such a file is garbage and may be removed.
+bool IsTemporaryOfDeadWriter(const std::string& file_name);
+/// Removes the temporaries of dead writers in `folder` whose names start with `prefix` (all of
+/// them for ""); returns how many. Errors are ignored (the next writer tries again).
+int RemoveDeadTemporariesIn(const std::string& folder, const std::string& prefix = "");
+/// Removes the temporaries that dead writers of `path` left beside it; returns how many.
+int RemoveDeadTemporariesOf(const std::string& path);
 
 /// Renames `from` over `to` (atomic on one file system). Throws UserError on failure.
 void ReplaceFile(const std::string& from, const std::string& to);

@@ -8,12 +8,14 @@
 #include <ATen/ATen.h>
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/policy_impl.h"
@@ -104,6 +106,15 @@ std::vector<float> FromTensor(const at::Tensor& tensor, const char* name) {
   }
   const at::Tensor t = tensor.contiguous();
   const float* data = t.data_ptr<float>();
+  // A model that diverged, or a file altered on disk, must not be rolled out as if it were fine.
+  for (int64_t i = 0; i < t.numel(); ++i) {
+    if (!std::isfinite(data[i])) {
+      throw UserError(std::string("tensor '") + name + "' value " + std::to_string(i) + " of " +
+                      std::to_string(t.numel()) + " is " +
+                      (std::isnan(data[i]) ? "NaN" : "infinite") +
+                      ": the model diverged or the file was altered; train it again");
+    }
+  }
   return std::vector<float>(data, data + t.numel());
 }
 
@@ -157,7 +168,7 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
 
 void Trainer::SaveCheckpoint(const std::string& path) const {
   const TrainerState s = impl_->State();
-  const std::string temp = path + ".partial";
+  const std::string temp = TemporarySibling(path);
   try {
     torch::serialize::OutputArchive archive;
     archive.write("format", c10::IValue(std::string(kFormat)));

@@ -16,10 +16,16 @@ enum class Durability {
 
 /// Writes `path` through `write(temporary_path)`, then renames the temporary file over `path`.
 /// Readers see the old file or the new one, never a part; if `write` throws (or the process
-/// dies) the temporary file is removed (or left for Session::Open to clean up) and `path` is
-/// untouched.
+/// dies) the temporary file is removed (or left, for the next write of `path` or Session::Open
+/// to remove) and `path` is untouched.
+///
+/// Temporaries that killed writers of `path` left are removed first, which lists the folder;
+/// `sweep` = false skips that where the folder is large and swept otherwise (a session's episode
+/// folders, which Session::Open sweeps).
 template <typename Write>
-void WriteFileVia(const std::string& path, Durability durability, const Write& write) {
+void WriteFileVia(const std::string& path, Durability durability, const Write& write,
+                  bool sweep = true) {
+  if (sweep) RemoveDeadTemporariesOf(path);
   const std::string tmp = TemporarySibling(path);
   try {
     write(tmp);

@@ -197,6 +197,13 @@ Session Session::Open(const std::string& dir, Access access) {
   session.access_ = access;
   if (access == Access::kReadWrite) session.RequireWritable();
   session.Scan();
+  if (access == Access::kReadWrite) {
+    // Killed writers of checkpoints, training records, rollouts and reports left temporaries.
+    for (const char* folder :
+         {"", "checkpoints", "training", "rollouts", "report", "report/figures", kTrashFolder}) {
+      session.recovered_temporaries_ += RemoveDeadTemporariesIn(session.Path(folder));
+    }
+  }
   // A killed writer may have left the index behind the episode files: bring it up to date.
   if (access == Access::kReadWrite && !SessionIndexIsCurrent(session, session.Path(kIndexName))) {
     session.RebuildIndex();
@@ -382,8 +389,11 @@ const EpisodeEntry& Session::CommitDemo(const DemoRecord& record,
   }
   // The rename is the commit; fsync first so that a power loss cannot leave a renamed but empty
   // episode.
-  WriteFileVia(final_path, Durability::kFsync,
-               [&](const std::string& tmp) { WriteDemoFile(tmp, manifest_, stamped); });
+  // Open removed the dead writers' temporaries here; a sweep per commit would list the folder
+  // (O(episodes)) every time.
+  WriteFileVia(
+      final_path, Durability::kFsync,
+      [&](const std::string& tmp) { WriteDemoFile(tmp, manifest_, stamped); }, /*sweep=*/false);
 
   EpisodeEntry entry;
   entry.name = name;
@@ -413,8 +423,9 @@ const EpisodeEntry& Session::CommitPlay(const PlayRecord& record) {
   stamped.meta.kind = "play";
   stamped.meta.num_samples = static_cast<int64_t>(record.samples.size());
   if (stamped.meta.recorded_at.empty()) stamped.meta.recorded_at = NowIso8601();
-  WriteFileVia(final_path, Durability::kFsync,
-               [&](const std::string& tmp) { WritePlayFile(tmp, manifest_, stamped); });
+  WriteFileVia(
+      final_path, Durability::kFsync,
+      [&](const std::string& tmp) { WritePlayFile(tmp, manifest_, stamped); }, /*sweep=*/false);
   EpisodeEntry entry;
   entry.name = name;
   entry.path = final_path;

@@ -2,12 +2,16 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
 #include <torch/torch.h>
+#include <cmath>
+#include <limits>
 
 #include <filesystem>
 #include <fstream>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/learn/architecture.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
@@ -67,7 +71,7 @@ TEST(CheckpointTest, RoundTripGivesTheSamePolicy) {
   trainer.Train();
   const std::string path = TempPath("roundtrip.ckpt");
   trainer.SaveCheckpoint(path);
-  EXPECT_FALSE(std::filesystem::exists(path + ".partial"));
+  EXPECT_FALSE(std::filesystem::exists(TemporarySibling(path)));
   const Policy loaded = LoadPolicy(path);
   EXPECT_EQ(loaded.spec(), data.spec);
   EXPECT_TRUE(BitwiseEqual(Probe(loaded, data), Probe(trainer.policy(), data)));
@@ -244,6 +248,46 @@ TEST(CheckpointTest, ArchitectureMismatchIsAUserError) {
   out.save_to(bad);
   EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(bad, data); }), HasSubstr("architecture differs"));
   EXPECT_THAT(UserErrorOf([&] { LoadPolicy(bad); }), HasSubstr("architecture differs"));
+}
+
+TEST(CheckpointTest, NonFiniteParametersAreRefusedNamingTheTensorAndValue) {
+  const Dataset data = MakeVectorTask(1, 5);
+  Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));
+  const std::string good = TempPath("finite.ckpt");
+  trainer.SaveCheckpoint(good);
+  for (const char* poisoned : {"params", "target_scaling", "exp_avg_sq"}) {
+    for (const float value :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+      torch::serialize::InputArchive in;
+      in.load_from(good);
+      torch::serialize::OutputArchive out;
+      for (const char* key : {"format", "network", "train", "spec", "state"}) {
+        c10::IValue v;
+        ASSERT_TRUE(in.try_read(key, v));
+        out.write(key, v);
+      }
+      for (const char* key : {"params", "target_scaling", "exp_avg", "exp_avg_sq"}) {
+        torch::Tensor t;
+        in.read(key, t);
+        if (std::string(key) == poisoned) {
+          t = t.clone();
+          t[1] = value;
+        }
+        out.write(key, t);
+      }
+      const std::string bad = TempPath("nonfinite.ckpt");
+      out.save_to(bad);
+      const std::string expected = std::string("tensor '") + poisoned + "' value 1 of ";
+      EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(bad, data); }), HasSubstr(expected));
+      if (std::string(poisoned) != "exp_avg_sq") {  // a policy does not read the optimiser
+        const std::string message = UserErrorOf([&] { LoadPolicy(bad); });
+        EXPECT_THAT(message, HasSubstr(expected));
+        EXPECT_THAT(message, HasSubstr(std::isnan(value) ? "is NaN" : "is infinite"));
+        EXPECT_THAT(message, HasSubstr(bad));
+      }
+    }
+  }
+  EXPECT_NO_THROW(LoadPolicy(good));
 }
 
 }  // namespace

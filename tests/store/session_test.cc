@@ -2,6 +2,8 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <sys/stat.h>
 
@@ -237,6 +239,34 @@ TEST(SessionTest, LeftoverTemporaryFilesOfAKilledWriterAreRemovedOnOpen) {
   EXPECT_EQ(session.recovered_temporaries(), 1);
   EXPECT_FALSE(fs::exists(dir.Path("s/episodes/demo_1.h5.tmp.12345")));
   EXPECT_EQ(session.NextDemoNumber(), 1);
+}
+
+TEST(SessionTest, TemporariesOfDeadWritersOfDerivedFilesAreRemovedOnOpen) {
+  TempDir dir("derived_leftovers");
+  { Session session = Session::Create(dir.Path("s"), SmallManifest()); }
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  const std::string dead = std::to_string(child), live = std::to_string(getpid());
+  std::vector<std::string> left;
+  for (const char* folder : {"checkpoints", "training", "rollouts", "report/figures"}) {
+    fs::create_directories(dir.Path(std::string("s/") + folder));
+    left.push_back(dir.Path(std::string("s/") + folder + "/x.tmp." + dead));
+    std::ofstream(left.back()) << "half a file";
+  }
+  left.push_back(dir.Path("s/calibration.json.tmp." + dead));
+  std::ofstream(left.back()) << "half a file";
+  const std::string writing = dir.Path("s/checkpoints/recon.ckpt.tmp." + live);
+  std::ofstream(writing) << "a live writer's file";
+  {
+    Session read_only = Session::Open(dir.Path("s"), Session::Access::kReadOnly);
+    for (const std::string& path : left) EXPECT_TRUE(fs::exists(path)) << path;
+  }
+  Session session = Session::Open(dir.Path("s"));
+  EXPECT_EQ(session.recovered_temporaries(), static_cast<int>(left.size()));
+  for (const std::string& path : left) EXPECT_FALSE(fs::exists(path)) << path;
+  EXPECT_TRUE(fs::exists(writing));
 }
 
 TEST(SessionTest, OnlyOneWriterAtATime) {
