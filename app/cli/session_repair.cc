@@ -36,6 +36,16 @@ void RunRepair(const RepairFlags& flags, const CLI::App& command) {
       flags.dir.c_str(), setup.world_name.c_str(), setup.placement.c_str(),
       setup.layout.empty() ? "" : ", layout ", setup.layout.c_str(), session.demos().size(),
       session.play_chunks().size());
+  int damaged = 0;
+  for (const auto* list : {&session.demos(), &session.play_chunks()}) {
+    for (const store::EpisodeEntry& e : *list) damaged += e.problem.empty() ? 0 : 1;
+  }
+  if (damaged > 0) {
+    std::printf(
+        "%d episode file(s) cannot be read and stay listed as damaged (see `recon session "
+        "info %s`)\n",
+        damaged, flags.dir.c_str());
+  }
   std::printf(
       "episode files do not record these, so they are what you gave (or the world's defaults): "
       "beacon noise %g m, injected demonstration noise %g, seed %llu. The lost manifest's "

@@ -164,18 +164,25 @@ Session Session::Repair(const std::string& dir, SessionManifest manifest) {
   session.manifest_ = manifest;
   session.access_ = Access::kReadWrite;
   session.RequireWritable();
-  // Every episode must agree with the manifest given, or the repair would make a session whose
-  // episodes read as damaged: check them all before writing anything.
+  // The episodes must agree with the manifest given, or the repair would make a session whose
+  // episodes all read as damaged: check them before writing anything. One that cannot be read
+  // (a truncated file) does not block the others: it stays listed as damaged, as in any session.
   session.Scan();
-  std::string earliest;
+  std::string earliest, first_problem;
+  int agreeing = 0;
   for (const std::vector<EpisodeEntry>* list : {&session.demos_, &session.play_}) {
     for (const EpisodeEntry& e : *list) {
       if (!e.problem.empty()) {
-        throw UserError("cannot repair " + dir + " as a " + manifest.world +
-                        " session: " + e.problem + ". Nothing was changed");
+        if (first_problem.empty()) first_problem = e.problem;
+        continue;
       }
+      ++agreeing;
       if (earliest.empty() || e.meta.recorded_at < earliest) earliest = e.meta.recorded_at;
     }
+  }
+  if (agreeing == 0) {
+    throw UserError("cannot repair " + dir + " as a " + manifest.world + " session: no episode " +
+                    "agrees with it (" + first_problem + "). Nothing was changed");
   }
   if (!earliest.empty()) session.manifest_.created_at = earliest;
   if (fs::exists(session.Path("calibration.json"))) {

@@ -57,8 +57,9 @@ class Session {
   /// a damaged session: see Repair). If creating fails part-way, what it made is removed.
   static Session Create(const std::string& dir, const SessionManifest& manifest);
   /// Gives a session that lost its session.json a new one: `manifest` describes the world the
-  /// episodes were recorded in (as Create would get it); every episode file must agree with it
-  /// (shapes, kinds), else UserError naming the file and nothing is written. The episodes' flags
+  /// episodes were recorded in (as Create would get it); the episode files must agree with it
+  /// (shapes, kinds): if none does, UserError naming the first file's problem and nothing is
+  /// written; unreadable ones among good ones stay listed as damaged. The episodes' flags
   /// (bad, split, notes) were in the lost manifest and come back as defaults; the creation time
   /// is the earliest episode's, and calibration.json is attached if present.
   static Session Repair(const std::string& dir, SessionManifest manifest);

@@ -66,6 +66,21 @@ TEST_F(SessionCliTest, RecordIntoAFolderThatLostItsManifestIsRefusedAndRepairRes
   for (const auto& [file, bytes] : before) EXPECT_EQ(after.at(file), bytes) << file;
 }
 
+TEST_F(SessionCliTest, RepairKeepsAnUnreadableEpisodeListedAsDamaged) {
+  const fs::path session = Path("s");
+  ASSERT_EQ(Record(session, "--world dynamic2d --demos 3").exit_code, 0);
+  fs::remove(session / "session.json");
+  const fs::path truncated = session / "episodes" / "demo_1.h5";
+  fs::resize_file(truncated, fs::file_size(truncated) / 2);
+  const CommandResult r = RunRecon("session repair " + session.string() + " --world dynamic2d");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("1 episode file(s) cannot be read"));
+  const json info = Info(session);
+  EXPECT_EQ(info["episodes"], 2) << info.dump();
+  ASSERT_EQ(info["damaged"].size(), 1u) << info.dump();
+  EXPECT_EQ(info["damaged"][0]["name"], "demo_1");
+}
+
 TEST_F(SessionCliTest, ANonEmptyFolderIsNotMadeASession) {
   const fs::path folder = Path("papers");
   fs::create_directories(folder);
