@@ -42,14 +42,18 @@ teach::SessionSetup NewSessionSetup(const NewSessionOptions& options, const std:
   return setup;
 }
 
-std::unique_ptr<worlds::World> MakeSetupWorld(const teach::SessionSetup& setup) {
+store::SessionManifest WorldManifest(const teach::SessionSetup& setup) {
   store::SessionManifest probe;
   probe.world = setup.world_name;
   probe.placement = setup.placement;
   probe.image_size = setup.image_size;
   probe.layout = setup.layout;
   probe.beacon_noise_sigma = setup.beacon_noise_sigma;
-  return MakeSessionWorld(probe, setup.placement);
+  return probe;
+}
+
+std::unique_ptr<worlds::World> MakeSetupWorld(const teach::SessionSetup& setup) {
+  return MakeSessionWorld(WorldManifest(setup), setup.placement);
 }
 
 }  // namespace recon::cli

@@ -31,6 +31,10 @@ struct NewSessionOptions {
 /// The setup those options give; UserError for a missing world or an unknown layout.
 teach::SessionSetup NewSessionSetup(const NewSessionOptions& options, const std::string& folder);
 
+/// The fields of a manifest that choose a setup's world (what MakeSessionWorld and a real
+/// cell's MakeWorld read), before the session exists.
+store::SessionManifest WorldManifest(const teach::SessionSetup& setup);
+
 /// The simulated world a setup records in.
 std::unique_ptr<worlds::World> MakeSetupWorld(const teach::SessionSetup& setup);
 

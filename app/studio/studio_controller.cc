@@ -97,26 +97,20 @@ class StudioController::Cell {
       if (!options_.calibration_file.empty()) opened->AttachCalibration(options_.calibration_file);
       made = MakeWorld(*opened);
     } else {
-      store::SessionManifest probe;
-      probe.world = options_.world;
-      probe.placement = teach::DefaultTeachingPlacement(options_.world);
-      probe.image_size = options_.image_size;
+      teach::SessionSetup setup;
+      setup.world_name = options_.world;
+      setup.placement = teach::DefaultTeachingPlacement(options_.world);
+      setup.image_size = options_.image_size;
+      setup.seed = options_.seed;
       // Simulated beacons' noise; real ones bring their own.
-      probe.beacon_noise_sigma = options_.beacon_noise_sigma.value_or(
+      setup.beacon_noise_sigma = options_.beacon_noise_sigma.value_or(
           real_ ? 0.0 : worlds::DefaultBeaconNoise(options_.world));
       const std::vector<std::string> layouts = worlds::WorldLayouts(options_.world);
-      probe.layout = layouts.empty() ? "" : options_.layout;
-      made = real_ ? real_->MakeWorld(probe, "") : cli::MakeSessionWorld(probe, probe.placement);
-      teach::SessionSetup setup;
-      setup.world_name = probe.world;
-      setup.placement = probe.placement;
-      setup.image_size = probe.image_size;
-      setup.seed = options_.seed;
-      setup.beacon_noise_sigma = probe.beacon_noise_sigma;
-      setup.layout = probe.layout;
+      setup.layout = layouts.empty() ? "" : options_.layout;
       // A real arm is only perturbed when the teacher asks for it (--demo-noise).
       setup.demo_noise_sigma = options_.demo_noise_sigma.value_or(
           real_ ? 0.0 : worlds::DefaultDemoNoise(options_.world));
+      made = real_ ? real_->MakeWorld(cli::WorldManifest(setup), "") : cli::MakeSetupWorld(setup);
       store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
       if (real_) real_->DescribeInto(manifest);
       opened.emplace(store::Session::Create(dir, manifest));
