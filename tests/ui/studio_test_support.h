@@ -146,30 +146,21 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
     }
   }
   if (p >= 6) {
-    s.rollouts = {{"baseline",
-                   "Baseline",
-                   "final toast-to-plate distance (m)",
-                   0.407,
-                   0.010,
-                   true,
-                   0.0,
-                   20,
-                   0,
-                   0,
-                   0,
-                   {}},
-                  {"recon",
-                   "RECON (Play)",
-                   "final toast-to-plate distance (m)",
-                   0.375,
-                   0.022,
-                   true,
-                   0.05,
-                   20,
-                   0,
-                   0,
-                   0,
-                   {}}};
+    const auto rollout = [](const char* method, const char* label, double distance, double sem,
+                            double success) {
+      RolloutView r;
+      r.method = method;
+      r.label = label;
+      r.metric_name = "final toast-to-plate distance (m)";
+      r.metric_mean = distance;
+      r.metric_sem = sem;
+      r.has_success = true;
+      r.success_rate = success;
+      r.tests = 20;
+      return r;
+    };
+    s.rollouts = {rollout("baseline", "Baseline", 0.407, 0.010, 0.0),
+                  rollout("recon", "RECON (Play)", 0.375, 0.022, 0.05)};
     // The playback of test scene 3, step 42 of 201.
     for (RolloutView& r : s.rollouts) {
       r.has_replay = true;

@@ -4,11 +4,11 @@
 
 #include <chrono>
 #include <filesystem>
-#include <sstream>
 #include <thread>
 
 #include "engine/core/error.h"
 #include "engine/report/image_png.h"
+#include "ui/testing/ui_script.h"
 #include "ui/widgets/widget_registry.h"
 
 namespace recon::ui {
@@ -19,21 +19,6 @@ std::string Join(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += (out.empty() ? "'" : ", '") + n + "'";
   return out.empty() ? "(none)" : out;
-}
-
-int KeyNamed(const std::string& name) {
-  if (name == "enter") return ImGuiKey_Enter;
-  if (name == "tab") return ImGuiKey_Tab;
-  if (name == "escape") return ImGuiKey_Escape;
-  if (name == "backspace") return ImGuiKey_Backspace;
-  if (name == "space") return ImGuiKey_Space;
-  if (name == "up") return ImGuiKey_UpArrow;
-  if (name == "down") return ImGuiKey_DownArrow;
-  if (name == "left") return ImGuiKey_LeftArrow;
-  if (name == "right") return ImGuiKey_RightArrow;
-  if (name == "pageup") return ImGuiKey_PageUp;
-  if (name == "pagedown") return ImGuiKey_PageDown;
-  return -1;
 }
 
 }  // namespace
@@ -147,69 +132,51 @@ bool UiDriver::Drawn(const std::string& label) const {
 }
 
 void UiDriver::RunScript(const std::string& script, const std::string& source_name) {
-  std::istringstream lines(script);
-  std::string line;
-  for (int number = 1; std::getline(lines, line); ++number) {
-    const size_t start = line.find_first_not_of(" \t");
-    if (start == std::string::npos || line[start] == '#') continue;
-    const size_t space = line.find(' ', start);
-    const std::string verb =
-        line.substr(start, space == std::string::npos ? std::string::npos : space - start);
-    const std::string argument = space == std::string::npos ? "" : line.substr(space + 1);
-    const std::string where = source_name + ":" + std::to_string(number) + ": ";
+  for (const ScriptStep& step : ParseUiScript(script, source_name)) {
     try {
-      if (verb == "click") {
-        Click(argument);
-      } else if (verb == "type") {
-        Type(argument);
-      } else if (verb == "press") {
-        const int key = KeyNamed(argument);
-        if (key < 0) throw UserError("unknown key '" + argument + "'");
-        Press(key);
-      } else if (verb == "hold") {
-        // hold <key> <seconds>: a key held down, e.g. an arrow driving the arm.
-        const size_t gap = argument.find(' ');
-        const std::string name = argument.substr(0, gap);
-        const int key = KeyNamed(name);
-        if (key < 0) throw UserError("unknown key '" + name + "'");
-        if (gap == std::string::npos) throw UserError("hold needs seconds: hold <key> <seconds>");
-        const double seconds = std::stod(argument.substr(gap + 1));
-        if (!(seconds > 0 && seconds <= 600)) {
-          throw UserError("hold lasts 0-600 seconds, not " + argument.substr(gap + 1));
-        }
-        Hold(key, seconds);
-      } else if (verb == "sleep") {
-        // sleep <seconds>: frames at about 30 a second for that much wall time, e.g. to let a
-        // playback or a teleop run as long as a person would watch it.
-        const double seconds = std::stod(argument);
-        if (!(seconds > 0 && seconds <= 600)) {
-          throw UserError("sleep lasts 0-600 seconds, not " + argument);
-        }
-        const auto until =
-            std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-        while (std::chrono::steady_clock::now() < until) {
-          WaitFrames(1);
-          std::this_thread::sleep_for(std::chrono::milliseconds(30));
-        }
-      } else if (verb == "wait") {
-        WaitFrames(std::stoi(argument));
-      } else if (verb == "wait-idle") {
-        WaitIdle(argument.empty() ? 600.0 : std::stod(argument));
-      } else if (verb == "screenshot") {
-        const std::filesystem::path path(argument);
-        report::WritePng(Screenshot(),
-                         path.is_absolute() || screenshot_dir_.empty()
-                             ? argument
-                             : (std::filesystem::path(screenshot_dir_) / path).string());
-      } else {
-        throw UserError("unknown command '" + verb +
-                        "' (click, type, press, hold, wait, sleep, wait-idle, screenshot)");
-      }
+      RunStep(step);
     } catch (const UserError& e) {
-      throw UserError(where + e.what());
-    } catch (const std::invalid_argument&) {
-      throw UserError(where + "'" + argument + "' is not a number of frames");
+      throw UserError(step.where + e.what());
     }
+  }
+}
+
+void UiDriver::RunStep(const ScriptStep& step) {
+  switch (step.verb) {
+    case ScriptStep::Verb::kClick:
+      Click(step.text);
+      break;
+    case ScriptStep::Verb::kType:
+      Type(step.text);
+      break;
+    case ScriptStep::Verb::kPress:
+      Press(step.key);
+      break;
+    case ScriptStep::Verb::kHold:
+      Hold(step.key, step.seconds);
+      break;
+    case ScriptStep::Verb::kWait:
+      WaitFrames(step.frames);
+      break;
+    case ScriptStep::Verb::kSleep: {
+      const auto until =
+          std::chrono::steady_clock::now() + std::chrono::duration<double>(step.seconds);
+      while (std::chrono::steady_clock::now() < until) {
+        WaitFrames(1);
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      }
+      break;
+    }
+    case ScriptStep::Verb::kWaitIdle:
+      WaitIdle(step.seconds);
+      break;
+    case ScriptStep::Verb::kScreenshot:
+      // ParseUiScript keeps the name relative and inside the folder.
+      report::WritePng(Screenshot(),
+                       screenshot_dir_.empty()
+                           ? step.text
+                           : (std::filesystem::path(screenshot_dir_) / step.text).string());
+      break;
   }
 }
 

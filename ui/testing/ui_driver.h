@@ -6,6 +6,7 @@
 
 #include "engine/core/image.h"
 #include "ui/platform/headless_window.h"
+#include "ui/testing/ui_script.h"
 
 namespace recon::ui {
 
@@ -49,12 +50,13 @@ class UiDriver {
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
   /// (enter, tab, escape, backspace, space, up, down, left, right, pageup, pagedown),
   /// `hold <key> <seconds>`, `wait <frames>`, `sleep <seconds>` (frames for that wall time),
-  /// `wait-idle [seconds]`, `screenshot <file.png>`;
-  /// `#` starts a comment. UserError naming the line number for
-  /// anything else.
+  /// `wait-idle [seconds]`, `screenshot <file.png>` (inside the screenshot folder); `#` starts
+  /// a comment. The whole script is checked before its first line runs (ParseUiScript); every
+  /// error names the script and line.
   void RunScript(const std::string& script, const std::string& source_name = "script");
 
  private:
+  void RunStep(const ScriptStep& step);
   void Hover(float x, float y, bool down);
 
   HeadlessWindow& window_;

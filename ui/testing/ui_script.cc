@@ -1,0 +1,158 @@
+#include "ui/testing/ui_script.h"
+
+#include <imgui.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "engine/core/error.h"
+#include "engine/core/strings.h"
+
+namespace recon::ui {
+
+namespace {
+
+constexpr const char* kVerbs = "click, type, press, hold, wait, sleep, wait-idle, screenshot";
+
+/// The whole of `text` as a number in [lo, hi]: "3abc", "1e999", "nan" and "" are refused,
+/// naming what the number is for.
+double ParseBounded(const std::string& text, const std::string& what, double lo, double hi) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(begin, &end);
+  const bool whole = end != begin && *end == '\0';
+  if (!whole || errno == ERANGE || !std::isfinite(value) || value < lo || value > hi) {
+    throw UserError(what + " must be a number from " + FormatNumber(lo) + " to " +
+                    FormatNumber(hi) + ", not '" + text + "'");
+  }
+  return value;
+}
+
+double ParseSeconds(const std::string& text, const std::string& verb) {
+  const double seconds = ParseBounded(text, verb + "'s seconds", 0.0, kMaxScriptSeconds);
+  if (!(seconds > 0)) throw UserError(verb + " needs more than 0 seconds, not '" + text + "'");
+  return seconds;
+}
+
+int ParseKey(const std::string& name) {
+  const int key = ScriptKeyNamed(name);
+  if (key < 0) {
+    throw UserError("unknown key '" + name +
+                    "' (enter, tab, escape, backspace, space, up, down, left, right, pageup, "
+                    "pagedown)");
+  }
+  return key;
+}
+
+/// A screenshot's name: a relative path that stays inside the screenshot folder.
+std::string CheckScreenshotName(const std::string& name) {
+  if (name.empty()) throw UserError("screenshot needs a file name: screenshot <name>.png");
+  const std::filesystem::path path(name);
+  if (path.is_absolute() || path.has_root_name() || path.has_root_directory()) {
+    throw UserError("screenshot '" + name +
+                    "' is an absolute path; name a file inside the screenshot folder "
+                    "(--screenshots)");
+  }
+  for (const std::filesystem::path& part : path) {
+    if (part == "..") {
+      throw UserError("screenshot '" + name + "' climbs out of the screenshot folder with '..'");
+    }
+  }
+  const std::string extension = path.extension().string();
+  if (extension != ".png" && extension != ".PNG") {
+    throw UserError("screenshot '" + name + "' must end in .png (it is written as a PNG)");
+  }
+  return name;
+}
+
+ScriptStep ParseStep(const std::string& verb, const std::string& argument) {
+  ScriptStep step;
+  if (verb == "click" || verb == "type") {
+    step.verb = verb == "click" ? ScriptStep::Verb::kClick : ScriptStep::Verb::kType;
+    if (step.verb == ScriptStep::Verb::kClick && argument.empty()) {
+      throw UserError("click needs a widget's label: click <label>");
+    }
+    step.text = argument;
+  } else if (verb == "press") {
+    step.verb = ScriptStep::Verb::kPress;
+    step.key = ParseKey(argument);
+  } else if (verb == "hold") {
+    // hold <key> <seconds>: a key held down, e.g. an arrow driving the arm.
+    step.verb = ScriptStep::Verb::kHold;
+    const size_t gap = argument.find(' ');
+    step.key = ParseKey(argument.substr(0, gap));
+    if (gap == std::string::npos) throw UserError("hold needs seconds: hold <key> <seconds>");
+    step.seconds = ParseSeconds(argument.substr(gap + 1), "hold");
+  } else if (verb == "sleep") {
+    // sleep <seconds>: frames at about 30 a second for that much wall time, e.g. to let a
+    // playback or a teleop run as long as a person would watch it.
+    step.verb = ScriptStep::Verb::kSleep;
+    step.seconds = ParseSeconds(argument, "sleep");
+  } else if (verb == "wait") {
+    step.verb = ScriptStep::Verb::kWait;
+    const double frames = ParseBounded(argument, "wait's frames", 0, kMaxScriptFrames);
+    if (frames != std::floor(frames)) {
+      throw UserError("wait counts whole frames, not '" + argument + "'");
+    }
+    step.frames = static_cast<int>(frames);
+  } else if (verb == "wait-idle") {
+    step.verb = ScriptStep::Verb::kWaitIdle;
+    step.seconds = argument.empty() ? 600.0 : ParseSeconds(argument, "wait-idle");
+  } else if (verb == "screenshot") {
+    step.verb = ScriptStep::Verb::kScreenshot;
+    step.text = CheckScreenshotName(argument);
+  } else {
+    throw UserError("unknown command '" + verb + "' (" + kVerbs + ")");
+  }
+  return step;
+}
+
+}  // namespace
+
+int ScriptKeyNamed(const std::string& name) {
+  if (name == "enter") return ImGuiKey_Enter;
+  if (name == "tab") return ImGuiKey_Tab;
+  if (name == "escape") return ImGuiKey_Escape;
+  if (name == "backspace") return ImGuiKey_Backspace;
+  if (name == "space") return ImGuiKey_Space;
+  if (name == "up") return ImGuiKey_UpArrow;
+  if (name == "down") return ImGuiKey_DownArrow;
+  if (name == "left") return ImGuiKey_LeftArrow;
+  if (name == "right") return ImGuiKey_RightArrow;
+  if (name == "pageup") return ImGuiKey_PageUp;
+  if (name == "pagedown") return ImGuiKey_PageDown;
+  return -1;
+}
+
+std::vector<ScriptStep> ParseUiScript(const std::string& script, const std::string& source_name) {
+  std::vector<ScriptStep> steps;
+  std::istringstream lines(script);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // a script saved on Windows
+    const size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] == '#') continue;
+    const size_t space = line.find(' ', start);
+    const std::string verb =
+        line.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    std::string argument = space == std::string::npos ? "" : line.substr(space + 1);
+    // Trailing blanks are invisible in an editor; a label or a number never ends in one.
+    while (!argument.empty() && (argument.back() == ' ' || argument.back() == '\t')) {
+      argument.pop_back();
+    }
+    const std::string where = source_name + ":" + std::to_string(number) + ": ";
+    try {
+      steps.push_back(ParseStep(verb, argument));
+    } catch (const UserError& e) {
+      throw UserError(where + e.what());
+    }
+    steps.back().where = where;
+  }
+  return steps;
+}
+
+}  // namespace recon::ui
