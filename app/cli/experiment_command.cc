@@ -23,6 +23,7 @@
 #include "engine/experiments/summary.h"
 #include "engine/learn/learner.h"
 #include "engine/worlds/tabletop.h"
+#include "engine/worlds/ur5_arm.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::cli {
@@ -66,6 +67,7 @@ struct ExperimentFlags {
   int random_shift = -1;            ///< -1: the world's recipe
   double feature_noise = 0.0;       ///< only when --feature-noise was given
   int action_chunk = -1;            ///< -1: the world's recipe
+  std::string ensemble;             ///< "all" | "gripper"; empty: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
   bool standardize_inputs = false;  ///< likewise
 };
@@ -162,6 +164,15 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   config.network.action_chunk =
       flags.action_chunk >= 0 ? flags.action_chunk : recipe.network.action_chunk;
+  config.network.ensembled_actions = recipe.network.ensembled_actions;
+  if (flags.ensemble == "all") {
+    config.network.ensembled_actions.clear();
+  } else if (flags.ensemble == "gripper") {
+    if (flags.world != "tabletop" && flags.world != "bintransfer") {
+      throw UserError("--ensemble gripper: the " + flags.world + " world has no gripper (use all)");
+    }
+    config.network.ensembled_actions = {worlds::Ur5Arm::kJoints};  // u = joints..., gripper
+  }
   config.network.spatial_softmax =
       given("--spatial-softmax") ? flags.spatial_softmax : recipe.network.spatial_softmax;
   config.train.standardize_inputs =
@@ -336,6 +347,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
                    "the world's recipe)")
       ->check(WholeBetween(1, 100));
+  command
+      ->add_option("--ensemble", flags->ensemble,
+                   "which actions a chunked policy averages over its overlapping chunks: all "
+                   "(ACT) or gripper (the gripper command; the joints act on the newest chunk); "
+                   "default: the world's recipe")
+      ->check(CLI::IsMember({"all", "gripper"}));
   command->add_flag(
       "--spatial-softmax,!--no-spatial-softmax", flags->spatial_softmax,
       "end the CNN in a spatial-softmax keypoint layer (default: the world's recipe)");

@@ -48,7 +48,8 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
   const int chunk = policy.action_chunk();
   std::vector<learn::ActionEnsembler> ensemblers;
   if (chunk > 1) {
-    ensemblers.assign(n, learn::ActionEnsembler(chunk, policy.spec().u_dim));
+    ensemblers.assign(
+        n, learn::ActionEnsembler(chunk, policy.spec().u_dim, 0.01, policy.ensembled_actions()));
   }
   for (int t = 0; t < steps; ++t) {
     for (size_t i = 0; i < n; ++i) {
@@ -91,7 +92,10 @@ std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,
   for (uint64_t seed : scenario_seeds) {
     const double metric = worlds::Rollout(
         *world, seed, [&](const worlds::Observation&) { return world->ExpertAction(); });
-    outcomes.push_back({world->ScoresActions() ? 0.0 : metric, world->TaskSucceeded()});
+    ScenarioOutcome outcome;
+    outcome.metric = world->ScoresActions() ? 0.0 : metric;
+    outcome.succeeded = world->TaskSucceeded();
+    outcomes.push_back(std::move(outcome));
   }
   return outcomes;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "engine/core/files.h"
@@ -18,10 +19,18 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 std::string ResultsCsv(const ExperimentResult& result) {
+  // Each run's outcome details (World::OutcomeDetails: grasped, closest_approach_m, ...) as
+  // columns: the means in summary.json hide whether a run failed in every scene or in a few.
+  std::set<std::string> detail_keys;
+  for (const RunResult& r : result.runs) {
+    for (const auto& [key, value] : r.details) detail_keys.insert(key);
+  }
   std::ostringstream csv;
   csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
          "final_action_loss,final_beacon_loss,final_play_loss"
-      << (result.has_success ? ",success_rate\n" : "\n");
+      << (result.has_success ? ",success_rate" : "");
+  for (const std::string& key : detail_keys) csv << "," << key;
+  csv << "\n";
   char buf[512];
   for (const RunResult& r : result.runs) {
     std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g",
@@ -31,6 +40,11 @@ std::string ResultsCsv(const ExperimentResult& result) {
                   r.final_losses.beacon_loss, r.final_losses.play_loss);
     csv << buf;
     if (result.has_success) csv << "," << r.success_rate;
+    for (const std::string& key : detail_keys) {
+      const auto it = r.details.find(key);
+      csv << ",";
+      if (it != r.details.end()) csv << it->second;
+    }
     csv << "\n";
   }
   return csv.str();
@@ -125,7 +139,9 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
   json network = {{"feature_dim", config.network.feature_dim},
                   {"policy_hidden", config.network.policy_hidden},
                   {"spatial_softmax", config.network.spatial_softmax},
-                  {"action_chunk", config.network.action_chunk}};
+                  {"action_chunk", config.network.action_chunk},
+                  // [] = every action (ACT's ensemble).
+                  {"ensembled_actions", config.network.ensembled_actions}};
   json beacon_noise = json::object();
   for (const Condition& c : config.conditions) beacon_noise[c.name] = c.noise_sigma;
   // What the demonstrations were recorded under (docs/cell.md).

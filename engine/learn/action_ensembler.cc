@@ -6,13 +6,22 @@
 
 namespace recon::learn {
 
-ActionEnsembler::ActionEnsembler(int chunk, int action_dim, double m)
+ActionEnsembler::ActionEnsembler(int chunk, int action_dim, double m,
+                                 const std::vector<int>& ensembled)
     : chunk_(chunk), action_dim_(action_dim), m_(m) {
   if (chunk < 1 || action_dim < 1) {
     throw UserError("an action ensembler needs a chunk and an action size of at least 1");
   }
   if (!std::isfinite(m) || m < 0) {
     throw UserError("the ensembling weight m must be a non-negative number");
+  }
+  ensembled_.assign(static_cast<size_t>(action_dim), ensembled.empty());
+  for (int a : ensembled) {
+    if (a < 0 || a >= action_dim) {
+      throw UserError("an ensembled action must be one of 0-" + std::to_string(action_dim - 1) +
+                      ", not " + std::to_string(a));
+    }
+    ensembled_[static_cast<size_t>(a)] = true;
   }
 }
 
@@ -34,6 +43,9 @@ std::vector<float> ActionEnsembler::Step(const std::vector<float>& chunk_predict
   std::vector<double> sum(static_cast<size_t>(action_dim_), 0.0);
   for (size_t p = 0; p < predictions_.size(); ++p) {
     for (int k = 0; k < action_dim_; ++k) sum[k] += w[p] * predictions_[p][k];
+  }
+  for (int k = 0; k < action_dim_; ++k) {
+    if (!ensembled_[static_cast<size_t>(k)]) sum[k] = predictions_.back()[k];
   }
   // Move every prediction on by one step; the oldest runs out when its chunk is used up.
   for (std::vector<float>& p : predictions_) p.erase(p.begin(), p.begin() + action_dim_);

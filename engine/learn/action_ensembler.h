@@ -3,7 +3,8 @@
 // Temporal ensembling of action chunks (Zhao et al., ACT 2023). A policy that predicts the next k
 // actions at every step has, for the current step, up to k predictions made at the last k steps.
 // Acting on their weighted mean, w_i = exp(-m i) with i = 0 the oldest prediction, smooths the
-// motion and lets an early, committed plan outvote a single step's jitter.
+// motion and lets an early, committed plan outvote a single step's jitter. Actions left out of
+// the ensemble come from the newest prediction alone (NetworkConfig::ensembled_actions).
 
 #include <deque>
 #include <vector>
@@ -12,8 +13,10 @@ namespace recon::learn {
 
 class ActionEnsembler {
  public:
-  /// `chunk` actions of `action_dim` values per prediction; `m` >= 0 (ACT's 0.01).
-  ActionEnsembler(int chunk, int action_dim, double m = 0.01);
+  /// `chunk` actions of `action_dim` values per prediction; `m` >= 0 (ACT's 0.01). `ensembled`
+  /// lists the actions averaged over the predictions; empty = all of them.
+  ActionEnsembler(int chunk, int action_dim, double m = 0.01,
+                  const std::vector<int>& ensembled = {});
 
   /// Adds this step's prediction (chunk * action_dim values, the current step's action first)
   /// and returns the action to execute now. Call once per step, in order.
@@ -28,6 +31,7 @@ class ActionEnsembler {
  private:
   int chunk_, action_dim_;
   double m_;
+  std::vector<bool> ensembled_;  ///< per action: averaged (true) or the newest prediction's
   /// The predictions still covering the current step, oldest first; each is trimmed at the
   /// front as steps pass, so its first action is always the current step's.
   std::deque<std::vector<float>> predictions_;

@@ -81,6 +81,16 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
   RequirePositive(n.beacon_hidden, "beacon_hidden");
   Require(n.action_chunk >= 1 && n.action_chunk <= kMaxActionChunk,
           "action_chunk must be between 1 and " + std::to_string(kMaxActionChunk));
+  for (size_t i = 0; i < n.ensembled_actions.size(); ++i) {
+    const int a = n.ensembled_actions[i];
+    Require(a >= 0 && a < spec.u_dim, "ensembled_actions: " + std::to_string(a) +
+                                          " is not an action (u has " + std::to_string(spec.u_dim) +
+                                          ": 0-" + std::to_string(spec.u_dim - 1) + ")");
+    for (size_t j = 0; j < i; ++j) {
+      Require(n.ensembled_actions[j] != a,
+              "ensembled_actions: action " + std::to_string(a) + " is listed twice");
+    }
+  }
   Architecture arch;
   arch.spec = spec;
   arch.network = network;

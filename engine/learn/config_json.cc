@@ -39,6 +39,7 @@ std::string ToJson(const NetworkConfig& n) {
   j["image_scale"] = n.image_scale;
   j["spatial_softmax"] = n.spatial_softmax;
   j["action_chunk"] = n.action_chunk;
+  j["ensembled_actions"] = n.ensembled_actions;
   j["feature_mlp_hidden"] = n.feature_mlp_hidden;
   j["policy_hidden"] = n.policy_hidden;
   j["beacon_hidden"] = n.beacon_hidden;
@@ -90,6 +91,8 @@ NetworkConfig NetworkConfigFromJson(const std::string& text) {
   if (j.contains("spatial_softmax")) Read(j, "spatial_softmax", n.spatial_softmax, what);
   // Configurations from before chunking predict one action.
   if (j.contains("action_chunk")) Read(j, "action_chunk", n.action_chunk, what);
+  // ... and, before the choice existed, acted on the ensemble of every action.
+  if (j.contains("ensembled_actions")) Read(j, "ensembled_actions", n.ensembled_actions, what);
   Read(j, "feature_mlp_hidden", n.feature_mlp_hidden, what);
   Read(j, "policy_hidden", n.policy_hidden, what);
   Read(j, "beacon_hidden", n.beacon_hidden, what);

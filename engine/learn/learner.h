@@ -75,6 +75,13 @@ struct NetworkConfig {
   /// an acting robot averages the overlapping predictions for the current step
   /// (ActionEnsembler). 1 (the default) = one action per step.
   int action_chunk = 1;
+  /// Which actions (indices into u) the acting robot averages over the overlapping chunks; the
+  /// others are taken from the newest chunk alone. Empty (the default) = every action, ACT's
+  /// ensemble. A discrete command such as a gripper's close needs the average to cross its
+  /// threshold at all (docs/results.md); a joint velocity taken from the newest chunk follows
+  /// the state now, where an average also carries plans made up to a chunk ago (e.g. the lift
+  /// after a close that came late).
+  std::vector<int> ensembled_actions;
 
   bool operator==(const NetworkConfig& other) const = default;
 };
@@ -177,6 +184,8 @@ class Policy {
                                            const std::vector<std::vector<float>>& ys) const;
   /// Actions the policy predicts at once (NetworkConfig::action_chunk; 1 without chunking).
   int action_chunk() const;
+  /// The actions acted on as the chunks' ensemble (NetworkConfig::ensembled_actions).
+  const std::vector<int>& ensembled_actions() const;
   /// The whole predicted chunk per observation: action_chunk() actions of u_dim values, the
   /// current step's first. Act and ActBatch return only its first action; a robot that acts on
   /// chunks averages them over steps with an ActionEnsembler.

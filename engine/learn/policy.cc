@@ -114,6 +114,10 @@ std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<f
 
 int Policy::action_chunk() const { return Require(impl_).arch().network.action_chunk; }
 
+const std::vector<int>& Policy::ensembled_actions() const {
+  return Require(impl_).arch().network.ensembled_actions;
+}
+
 std::vector<std::vector<float>> Policy::ActChunkBatch(
     const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys) const {
   return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys);

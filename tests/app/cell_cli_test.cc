@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -151,6 +152,17 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   EXPECT_NEAR(two["recon-play"]["total_s"].get<double>(), 2 * per_demo + 4.6 + 2.0, 1e-9);
   EXPECT_TRUE(fs::exists(out / "success.png"));
   EXPECT_TRUE(fs::exists(out / "data_efficiency.png"));
+  // Each run's outcome details are columns of results.csv, one value per run.
+  std::ifstream csv(out / "results.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_THAT(header, HasSubstr(",success_rate,"));
+  EXPECT_THAT(header, HasSubstr(",grasped"));
+  EXPECT_THAT(header, HasSubstr(",grip_nearer_bowl"));
+  ASSERT_TRUE(std::getline(csv, row));
+  EXPECT_EQ(std::count(row.begin(), row.end(), ','), std::count(header.begin(), header.end(), ','))
+      << header << "\n"
+      << row;
 }
 
 // The protocol's options: each bad value names its option, exits 2 and writes nothing.

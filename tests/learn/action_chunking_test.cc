@@ -47,6 +47,50 @@ TEST(ActionChunkingTest, EachStepAveragesThePredictionsMadeForIt) {
   EXPECT_THROW(ActionEnsembler(2, 1, -1.0), UserError);
 }
 
+TEST(ActionChunkingTest, ActionsLeftOutOfTheEnsembleComeFromTheNewestPrediction) {
+  // Two actions per step (a joint velocity, a gripper command); only the gripper is averaged.
+  ActionEnsembler e(3, 2, 0.0, {1});
+  // Each prediction: (joint, gripper) for this step, the next and the one after.
+  std::vector<float> first = e.Step({1, 0, 2, 0, 3, 1});
+  EXPECT_FLOAT_EQ(first[0], 1.0f);
+  EXPECT_FLOAT_EQ(first[1], 0.0f);
+  // Step 1: the joint is the newest prediction's (5), the gripper the mean of 0 and 1.
+  std::vector<float> second = e.Step({5, 1, 6, 1, 7, 1});
+  EXPECT_FLOAT_EQ(second[0], 5.0f);
+  EXPECT_FLOAT_EQ(second[1], 0.5f);
+  // Step 2: three predictions (1, 1, 1) for the gripper, the newest's 9 for the joint.
+  std::vector<float> third = e.Step({9, 1, 9, 1, 9, 1});
+  EXPECT_FLOAT_EQ(third[0], 9.0f);
+  EXPECT_FLOAT_EQ(third[1], (1.0f + 1.0f + 1.0f) / 3.0f);
+  // With every action ensembled (the default), the joint would have been (3 + 6 + 9) / 3.
+  ActionEnsembler all(3, 2, 0.0);
+  all.Step({1, 0, 2, 0, 3, 1});
+  all.Step({5, 1, 6, 1, 7, 1});
+  EXPECT_FLOAT_EQ(all.Step({9, 1, 9, 1, 9, 1})[0], 6.0f);
+  EXPECT_THROW(ActionEnsembler(3, 2, 0.0, {2}), UserError);
+  EXPECT_THROW(ActionEnsembler(3, 2, 0.0, {-1}), UserError);
+}
+
+TEST(ActionChunkingTest, AnEnsembledActionMustBeOneOfThePoliciesActions) {
+  NetworkConfig network;
+  network.action_chunk = 4;
+  network.ensembled_actions = {0, 3};
+  const DataSpec spec{1, {1}, 0, 2};
+  try {
+    BuildArchitecture(spec, network, Method::kBaseline);
+    ADD_FAILURE() << "an action outside u was accepted";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(),
+                ::testing::HasSubstr("ensembled_actions: 3 is not an action (u has 2: 0-1)"));
+  }
+  network.ensembled_actions = {1, 1};
+  EXPECT_THROW(BuildArchitecture(spec, network, Method::kBaseline), UserError);
+  network.ensembled_actions = {1};
+  EXPECT_NO_THROW(BuildArchitecture(spec, network, Method::kBaseline));
+  // The choice travels with the model's configuration; older configurations read as "all".
+  EXPECT_EQ(NetworkConfigFromJson(ToJson(network)).ensembled_actions, std::vector<int>{1});
+}
+
 TEST(ActionChunkingTest, TargetsAreTheNextActionsWithTheLastRepeated) {
   Dataset data;
   data.spec = DataSpec{1, {1}, 0, 1};
