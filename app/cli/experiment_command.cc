@@ -63,9 +63,11 @@ struct ExperimentFlags {
   std::string layout = "paper";
   std::string observation = "image";
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
-  double demo_noise = 0.0;          ///< only when --demo-noise is given; else the world's default
-  int random_shift = -1;            ///< -1: the world's recipe
-  double feature_noise = 0.0;       ///< only when --feature-noise was given
+  double demo_noise = 0.0;     ///< only when --demo-noise is given; else the world's default
+  int random_shift = -1;       ///< -1: the world's recipe
+  double feature_noise = 0.0;  ///< only when --feature-noise was given
+  double feature_gate = 0.0;   ///< the gate penalty, only when --feature-gate was given
+  bool no_feature_gate = false;
   int action_chunk = -1;            ///< -1: the world's recipe
   std::string ensemble;             ///< "all" | "gripper"; empty: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
@@ -159,6 +161,15 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       flags.random_shift >= 0 ? flags.random_shift : recipe.train.random_shift_px;
   config.train.feature_noise =
       given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
+  config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
+  config.train.gate_penalty = recipe.train.gate_penalty;
+  if (given("--feature-gate")) {
+    config.network.feature_gate_hidden = experiments::kFeatureGateHidden;
+    config.train.gate_penalty = flags.feature_gate;
+  } else if (flags.no_feature_gate) {
+    config.network.feature_gate_hidden.clear();
+    config.train.gate_penalty = 0.0;
+  }
   if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
     config.train.random_shift_px = 0;  // vector observations have no pixels to shift
   }
@@ -342,6 +353,14 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "deviations of each feature over the batch (0 = off; default: the world's "
                    "recipe)")
       ->check(NumberBetween(0, learn::kMaxFeatureNoise));
+  CLI::Option* gate =
+      command
+          ->add_option("--feature-gate", flags->feature_gate,
+                       "a gate on the robot state that shuts the features out of the policy "
+                       "where they do not help, trained with this penalty on its mean (0-" +
+                           FormatNumber(learn::kMaxGatePenalty) + "; default: the world's recipe)")
+          ->check(NumberBetween(0, learn::kMaxGatePenalty));
+  command->add_flag("--no-feature-gate", flags->no_feature_gate, "no feature gate")->excludes(gate);
   command
       ->add_option("--action-chunk", flags->action_chunk,
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "engine/learn/learner.h"
 
@@ -18,6 +19,10 @@ namespace recon::experiments {
 /// - the tabletop predicts chunks of 10 actions, ensembled over steps (ACT), with a (512, 512)
 ///   policy trained 15,000 steps at a learning rate of 1e-3 (train.steps, train.learning_rate:
 ///   what `recon experiment`, `recon train` and the studio use unless told otherwise).
+/// The feature gate's hidden layers when an option turns it on (NetworkConfig::
+/// feature_gate_hidden): the gate only has to tell phases of the task apart from the state.
+inline const std::vector<int> kFeatureGateHidden = {32};
+
 struct WorldRecipe {
   learn::NetworkConfig network;
   learn::TrainConfig train;

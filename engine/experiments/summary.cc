@@ -135,13 +135,15 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"standardize_inputs", config.train.standardize_inputs},
       {"random_shift_px", config.train.random_shift_px},
       {"feature_noise", config.train.feature_noise},
+      {"gate_penalty", config.train.gate_penalty},
       {"play_per_scenario", config.play_per_scenario}};
   json network = {{"feature_dim", config.network.feature_dim},
                   {"policy_hidden", config.network.policy_hidden},
                   {"spatial_softmax", config.network.spatial_softmax},
                   {"action_chunk", config.network.action_chunk},
                   // [] = every action (ACT's ensemble).
-                  {"ensembled_actions", config.network.ensembled_actions}};
+                  {"ensembled_actions", config.network.ensembled_actions},
+                  {"feature_gate_hidden", config.network.feature_gate_hidden}};
   json beacon_noise = json::object();
   for (const Condition& c : config.conditions) beacon_noise[c.name] = c.noise_sigma;
   // What the demonstrations were recorded under (docs/cell.md).

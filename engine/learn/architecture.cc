@@ -148,6 +148,11 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
     arch.beacon = MakeMlp(n.feature_dim, n.beacon_hidden, Activation::kTanh, Activation::kTanh,
                           2 * spec.b_dim, layout);
   }
+  if (n.has_feature_gate()) {
+    RequirePositive(n.feature_gate_hidden, "feature_gate_hidden");
+    arch.gate =
+        MakeMlp(spec.x_dim, n.feature_gate_hidden, Activation::kTanh, Activation::kTanh, 1, layout);
+  }
   arch.num_params = layout.size();
   return arch;
 }
@@ -164,6 +169,10 @@ void InitializeParameters(const Architecture& arch, Rng& rng, float* params) {
   InitMlp(arch.feature, false, rng, params);
   InitMlp(arch.policy, true, rng, params);
   InitMlp(arch.beacon, true, rng, params);
+  if (arch.has_gate()) {
+    InitMlp(arch.gate, false, rng, params);
+    params[arch.gate.back().bias] = kGateInitialBias;
+  }
 }
 
 }  // namespace recon::learn

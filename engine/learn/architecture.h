@@ -16,6 +16,9 @@ enum class Activation { kNone, kRelu, kTanh };
 
 /// The longest action chunk a policy may predict (NetworkConfig::action_chunk): 10 s at 10 Hz.
 constexpr int kMaxActionChunk = 100;
+/// The feature gate's initial output bias: sigmoid(2) = 0.88, open, so the policy first learns
+/// to use the features and the gate penalty then shuts them out where they do not help.
+constexpr float kGateInitialBias = 2.0f;
 
 /// A fully connected layer y = act(W x + bias); W is row-major [out][in] (PyTorch's layout).
 /// `weight` and `bias` are offsets into the flat parameter buffer.
@@ -57,6 +60,7 @@ struct Architecture {
   std::vector<LinearLayer> feature;  // after the convolutions, or the whole MLP
   std::vector<LinearLayer> policy;   // last layer is the head
   std::vector<LinearLayer> beacon;   // empty for the Baseline
+  std::vector<LinearLayer> gate;     // the feature gate on x (one output, before its sigmoid)
   int64_t num_params = 0;
 
   bool image() const { return spec.YIsImage(); }
@@ -64,6 +68,7 @@ struct Architecture {
   int action_width() const { return spec.u_dim * network.action_chunk; }
   int feature_dim() const { return network.feature_dim; }
   bool has_beacon_net() const { return !beacon.empty(); }
+  bool has_gate() const { return !gate.empty(); }
 };
 
 /// Lays out the networks. UserError if the configuration cannot be built for these shapes (for
@@ -73,7 +78,9 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
 /// The authors' initialisation: Xavier-uniform weights and zero biases for linear layers,
 /// PyTorch's default for convolutions (kaiming-uniform with a = sqrt(5), i.e. U(+-1/sqrt(fan_in))
 /// for weights and biases). All draws come from `rng`, so a seed fixes the model. The spatial
-/// softmax's temperature starts at 1 and draws nothing.
+/// softmax's temperature starts at 1 and draws nothing. The feature gate is drawn last (so a
+/// model without it draws what it always did) and starts open: its output bias is
+/// kGateInitialBias.
 void InitializeParameters(const Architecture& arch, Rng& rng, float* params);
 
 }  // namespace recon::learn

@@ -65,7 +65,8 @@ std::string StateToJson(const TrainerState& s, uint64_t fingerprint) {
   j["augment_rng"] = RngToJson(s.augment_rng);
   j["last"] = {{"attempt", s.last.attempt},         {"step", s.last.step},
                {"action_loss", s.last.action_loss}, {"beacon_loss", s.last.beacon_loss},
-               {"play_loss", s.last.play_loss},     {"total_loss", s.last.total_loss}};
+               {"play_loss", s.last.play_loss},     {"total_loss", s.last.total_loss},
+               {"gate_mean", s.last.gate_mean}};
   j["dataset_fingerprint"] = fingerprint;
   return j.dump();
 }
@@ -88,6 +89,8 @@ void StateFromJson(const std::string& text, TrainerState& s, uint64_t& fingerpri
     s.last.beacon_loss = last.at("beacon_loss").get<float>();
     s.last.play_loss = last.at("play_loss").get<float>();
     s.last.total_loss = last.at("total_loss").get<float>();
+    // States from before the feature gate: no gate, open.
+    if (last.contains("gate_mean")) s.last.gate_mean = last.at("gate_mean").get<float>();
     fingerprint = j.at("dataset_fingerprint").get<uint64_t>();
   } catch (const json::exception& e) {
     throw UserError(std::string("trainer state is missing or invalid (") + e.what() + ")");

@@ -40,6 +40,7 @@ std::string ToJson(const NetworkConfig& n) {
   j["spatial_softmax"] = n.spatial_softmax;
   j["action_chunk"] = n.action_chunk;
   j["ensembled_actions"] = n.ensembled_actions;
+  j["feature_gate_hidden"] = n.feature_gate_hidden;
   j["feature_mlp_hidden"] = n.feature_mlp_hidden;
   j["policy_hidden"] = n.policy_hidden;
   j["beacon_hidden"] = n.beacon_hidden;
@@ -60,6 +61,7 @@ std::string ToJson(const TrainConfig& t) {
   j["standardize_targets"] = t.standardize_targets;
   j["random_shift_px"] = t.random_shift_px;
   j["feature_noise"] = t.feature_noise;
+  j["gate_penalty"] = t.gate_penalty;
   j["standardize_inputs"] = t.standardize_inputs;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
@@ -93,6 +95,10 @@ NetworkConfig NetworkConfigFromJson(const std::string& text) {
   if (j.contains("action_chunk")) Read(j, "action_chunk", n.action_chunk, what);
   // ... and, before the choice existed, acted on the ensemble of every action.
   if (j.contains("ensembled_actions")) Read(j, "ensembled_actions", n.ensembled_actions, what);
+  // ... and had no gate.
+  if (j.contains("feature_gate_hidden")) {
+    Read(j, "feature_gate_hidden", n.feature_gate_hidden, what);
+  }
   Read(j, "feature_mlp_hidden", n.feature_mlp_hidden, what);
   Read(j, "policy_hidden", n.policy_hidden, what);
   Read(j, "beacon_hidden", n.beacon_hidden, what);
@@ -123,6 +129,7 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   // Checkpoints from before augmentation existed trained without it.
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
+  if (j.contains("gate_penalty")) Read(j, "gate_penalty", t.gate_penalty, what);
   if (j.contains("standardize_inputs")) {
     Read(j, "standardize_inputs", t.standardize_inputs, what);
   }

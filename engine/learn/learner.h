@@ -82,12 +82,24 @@ struct NetworkConfig {
   /// the state now, where an average also carries plans made up to a chunk ago (e.g. the lift
   /// after a close that came late).
   std::vector<int> ensembled_actions;
+  /// A feature gate: a small network on the robot state x alone (these tanh hidden layers, then
+  /// one sigmoid unit) gives g(x) in [0, 1], the probability that the policy looks at the
+  /// features. The policy network runs twice, seeing [x, phi] and blind [x, 0], and the robot
+  /// acts on g seeing + (1 - g) blind. Trained with TrainConfig::gate_penalty, the gate learns
+  /// to shut the camera out of the states where the teacher's actions do not depend on it (for
+  /// the tabletop: the approach to the toast, the same in every scene), so what the features
+  /// pick up there (the bowl) cannot move the arm. Empty (the default) = no gate, as the paper.
+  std::vector<int> feature_gate_hidden;
 
+  bool has_feature_gate() const { return !feature_gate_hidden.empty(); }
   bool operator==(const NetworkConfig& other) const = default;
 };
 
 /// The largest TrainConfig::feature_noise accepted (in standard deviations of each feature).
 constexpr double kMaxFeatureNoise = 10.0;
+/// The largest TrainConfig::gate_penalty accepted (per unit of the mean gate, against a loss
+/// per sample of a few nats).
+constexpr double kMaxGatePenalty = 100.0;
 
 /// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
 /// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).
@@ -134,6 +146,13 @@ struct TrainConfig {
   /// spread, so the feature net cannot outgrow it by scaling up. 0 = off (nothing drawn, results
   /// unchanged); at most kMaxFeatureNoise.
   double feature_noise = 0.0;
+  /// With a feature gate (NetworkConfig::feature_gate_hidden) the action term is, per sample,
+  /// g L(seeing) + (1 - g) L(blind), the expected loss of a policy that looks with probability
+  /// g, and the loss gains gate_penalty times the batch's mean gate. Its slope in g is
+  /// L(seeing) - L(blind) + gate_penalty, so the gate shuts wherever the features lower the
+  /// action loss (per action, in nats under the NLL) by less than gate_penalty. A gate that
+  /// scaled phi instead could shrink for free while the policy's weights grew to undo it.
+  double gate_penalty = 0.0;
 
   bool operator==(const TrainConfig& other) const = default;
 };
@@ -149,6 +168,7 @@ struct StepMetrics {
   float beacon_loss = 0;
   float play_loss = 0;
   float total_loss = 0;
+  float gate_mean = 1;  ///< the feature gate's mean over the batch (1: no gate, always open)
 };
 
 struct TrainResult {
@@ -191,6 +211,9 @@ class Policy {
   /// chunks averages them over steps with an ActionEnsembler.
   std::vector<std::vector<float>> ActChunkBatch(const std::vector<std::vector<float>>& xs,
                                                 const std::vector<std::vector<float>>& ys) const;
+  /// How open the feature gate is for this observation, g(x) in [0, 1] (it reads x alone; 1
+  /// without a gate): how much of the camera's features the policy acts on here.
+  float FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const;
   /// The beacon net's mean prediction from the features of (x, y) (RECON only; empty for a
   /// Baseline). Lets a user see what the features learned to track.
   std::vector<float> PredictBeacon(const std::vector<float>& x, const std::vector<float>& y) const;

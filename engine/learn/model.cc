@@ -1,6 +1,7 @@
 #include "engine/learn/model.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace recon::learn {
@@ -24,6 +25,16 @@ void ModelBuffers::Resize(const Architecture& arch, int batch_size) {
   if (arch.has_beacon_net()) beacon.Resize(arch.beacon, batch);
   grad_beacon_input.assign(n * k, 0.0f);
   grad_phi.assign(n * k, 0.0f);
+  if (arch.has_gate()) {
+    gate.Resize(arch.gate, batch);
+    policy_blind.Resize(arch.policy, batch);
+    blind_input.assign(n * (x_dim + k), 0.0f);
+    gate_value.assign(n, 0.0f);
+    grad_gate.assign(n, 0.0f);
+    policy_mix.assign(n * 2 * arch.action_width(), 0.0f);
+  } else {
+    gate_value.clear();
+  }
 }
 
 void ForwardFeatures(const Architecture& arch, const float* params, ModelBuffers& buffers) {
@@ -59,6 +70,25 @@ void ForwardPolicy(const Architecture& arch, const float* params, ModelBuffers& 
     for (int i = 0; i < k; ++i) row[x_dim + i] += offsets[i];
   }
   MlpForward(arch.policy, params, buffers.policy_input.data(), buffers.policy);
+  if (!arch.has_gate()) return;
+  MlpForward(arch.gate, params, buffers.x.data(), buffers.gate);
+  const float* z = buffers.gate.output();
+  for (int b = 0; b < buffers.batch; ++b) {
+    buffers.gate_value[b] = 1.0f / (1.0f + std::exp(-z[b]));
+    float* row = buffers.blind_input.data() + static_cast<size_t>(b) * (x_dim + k);
+    std::copy_n(buffers.x.data() + static_cast<size_t>(b) * x_dim, x_dim, row);
+  }
+  MlpForward(arch.policy, params, buffers.blind_input.data(), buffers.policy_blind);
+  const int head = 2 * arch.action_width();
+  const float* seeing = buffers.policy.output();
+  const float* blind = buffers.policy_blind.output();
+  for (int b = 0; b < buffers.batch; ++b) {
+    const float g = buffers.gate_value[b];
+    for (int j = 0; j < head; ++j) {
+      const size_t at = static_cast<size_t>(b) * head + j;
+      buffers.policy_mix[at] = g * seeing[at] + (1.0f - g) * blind[at];
+    }
+  }
 }
 
 void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& buffers) {
@@ -66,7 +96,8 @@ void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& 
 }
 
 void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
-              const float* grad_beacon_head, ModelBuffers& buffers, float* grads) {
+              const float* grad_beacon_head, ModelBuffers& buffers, float* grads,
+              const float* grad_blind_head) {
   const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
   std::fill(buffers.grad_phi.begin(), buffers.grad_phi.end(), 0.0f);
   if (grad_policy_head != nullptr) {
@@ -77,6 +108,14 @@ void Backward(const Architecture& arch, const float* params, const float* grad_p
           buffers.grad_policy_input.data() + static_cast<size_t>(b) * (x_dim + k) + x_dim;
       float* out = buffers.grad_phi.data() + static_cast<size_t>(b) * k;
       for (int i = 0; i < k; ++i) out[i] += row[i];
+    }
+    if (arch.has_gate()) {
+      if (grad_blind_head != nullptr) {
+        MlpBackward(arch.policy, params, buffers.blind_input.data(), grad_blind_head,
+                    buffers.policy_blind, grads, nullptr);
+      }
+      MlpBackward(arch.gate, params, buffers.x.data(), buffers.grad_gate.data(), buffers.gate,
+                  grads, nullptr);
     }
   }
   if (grad_beacon_head != nullptr) {

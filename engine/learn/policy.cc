@@ -71,8 +71,16 @@ void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& 
     // The head holds the means of the whole chunk, then their log-variances.
     stride = 2 * arch_.action_width();
     width = output == Output::kActionChunk ? arch_.action_width() : arch_.spec.u_dim;
-    scaling_.RestoreActions(buffers_.policy.out.back().data(), count, stride, width);
+    scaling_.RestoreActions(buffers_.mutable_policy_head(), count, stride, width);
     rows = buffers_.policy_head();
+  } else if (output == Output::kGate) {
+    if (!arch_.has_gate()) {
+      for (int b = 0; b < count; ++b) result[begin + b] = {1.0f};
+      return;
+    }
+    ForwardPolicy(arch_, params_.data(), buffers_);
+    rows = buffers_.gate_value.data();
+    width = stride = 1;
   } else if (output == Output::kBeacon) {
     ForwardBeacon(arch_, params_.data(), buffers_);
     width = arch_.spec.b_dim;
@@ -121,6 +129,10 @@ const std::vector<int>& Policy::ensembled_actions() const {
 std::vector<std::vector<float>> Policy::ActChunkBatch(
     const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys) const {
   return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys);
+}
+
+float Policy::FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const {
+  return Require(impl_).Run(PolicyImpl::Output::kGate, {x}, {y}).front().front();
 }
 
 std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,

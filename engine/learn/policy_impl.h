@@ -17,7 +17,8 @@ class PolicyImpl {
   PolicyImpl(Architecture arch, const std::vector<float>& params, TargetScaling scaling);
 
   /// kAction: the first action of the chunk; kActionChunk: all of it (u_dim * action_chunk).
-  enum class Output { kAction, kActionChunk, kBeacon, kFeatures };
+  /// kGate: the feature gate g(x) (one value; 1 without a gate).
+  enum class Output { kAction, kActionChunk, kBeacon, kFeatures, kGate };
 
   /// One row of `output` per observation (action means, beacon means or features). Checks the
   /// sizes of x and y (UserError). Serialised by a mutex: copies of a Policy share this object.

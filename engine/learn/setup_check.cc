@@ -49,6 +49,12 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     std::to_string(kMaxRandomShiftPx) + " pixels (got " +
                     std::to_string(train.random_shift_px) + ")");
   }
+  if (!std::isfinite(train.gate_penalty) || train.gate_penalty < 0 ||
+      train.gate_penalty > kMaxGatePenalty) {
+    throw UserError("train config: gate_penalty must be between 0 and " +
+                    FormatNumber(kMaxGatePenalty) + " (got " + FormatNumber(train.gate_penalty) +
+                    ")");
+  }
   if (!std::isfinite(train.feature_noise) || train.feature_noise < 0 ||
       train.feature_noise > kMaxFeatureNoise) {
     throw UserError("train config: feature_noise must be between 0 and " +

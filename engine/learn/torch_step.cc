@@ -33,17 +33,24 @@ at::Tensor Wrap(const float* data, std::vector<int64_t> shape) {
   return at::from_blob(const_cast<float*>(data), shape, at::kFloat);
 }
 
-// Per-sample mean of the loss of a [batch][mean | logvar] head, as in losses.cc.
-at::Tensor HeadLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
-                    const float* noise) {
+// Each sample's loss of a [batch][mean | logvar] head, as in losses.cc with a batch of one:
+// the NLL summed over dimensions, the MSE of a sample averaged over them.
+at::Tensor SampleLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
+                      const float* noise) {
   const int64_t d = target.size(1);
   const at::Tensor mean = head.narrow(1, 0, d), logvar = head.narrow(1, d, d);
   if (kind == LossKind::kNll) {
     const at::Tensor sq = (target - mean).square() * at::exp(-logvar);
-    return (0.5 * ((logvar + kLog2Pi) + sq)).sum(1).mean();
+    return (0.5 * ((logvar + kLog2Pi) + sq)).sum(1);
   }
   const at::Tensor sample = mean + at::exp(0.5 * logvar) * Wrap(noise, {target.size(0), d});
-  return (sample - target).square().mean();
+  return (sample - target).square().mean(1);
+}
+
+// The batch's mean of SampleLoss, as losses.cc.
+at::Tensor HeadLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
+                    const float* noise) {
+  return SampleLoss(kind, head, target, noise).mean();
 }
 
 }  // namespace
@@ -151,12 +158,29 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
                            Wrap(batch.feature_noise, {n, s.arch.feature_dim()});
   }
   // Per action of the chunk, as the fused backend does (trainer.cc).
-  const at::Tensor action =
-      HeadLoss(kind, s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1)),
-               Wrap(batch.target_u, {n, s.arch.action_width()}), batch.noise_u) /
-      static_cast<double>(s.arch.network.action_chunk);
+  const at::Tensor target_u = Wrap(batch.target_u, {n, s.arch.action_width()});
+  const at::Tensor seeing = s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1));
+  at::Tensor action;
+  at::Tensor gate;
+  if (s.arch.has_gate()) {
+    // As GatedActionLoss (trainer_step.cc): g L_seeing + (1 - g) L_blind per sample.
+    gate = at::sigmoid(s.Mlp(s.arch.gate, params, x)).squeeze(1);
+    const at::Tensor blind =
+        s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
+    action = (gate * SampleLoss(kind, seeing, target_u, batch.noise_u) +
+              (1 - gate) * SampleLoss(kind, blind, target_u, batch.noise_u))
+                 .mean();
+  } else {
+    action = HeadLoss(kind, seeing, target_u, batch.noise_u);
+  }
+  action = action / static_cast<double>(s.arch.network.action_chunk);
   at::Tensor total = action * s.train.action_weight;
   metrics.action_loss = action.item<float>();
+  if (gate.defined()) {
+    const at::Tensor gate_mean = gate.mean();
+    total = total + gate_mean * s.train.gate_penalty;
+    metrics.gate_mean = gate_mean.item<float>();
+  }
   if (s.arch.has_beacon_net()) {
     const at::Tensor beacon = HeadLoss(kind, s.Mlp(s.arch.beacon, params, phi),
                                        Wrap(batch.target_b, {n, spec.b_dim}), batch.noise_b);

@@ -74,6 +74,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     feature_noise_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
     phi_offsets_.assign(feature_noise_.size(), 0.0f);
   }
+  if (arch_.has_gate()) grad_blind_head_.assign(grad_policy_head_.size(), 0.0f);
   if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
   StartAttempt(0);
 }
@@ -159,6 +160,7 @@ void TrainerImpl::Step() {
   double total = train_.action_weight * m.action_loss;
   if (arch_.has_beacon_net()) total += train_.beacon_weight * m.beacon_loss;
   if (UsesPlay()) total += train_.play_weight * m.play_loss;
+  if (arch_.has_gate()) total += train_.gate_penalty * m.gate_mean;
   m.total_loss = static_cast<float>(total);
 
   auto diverged = [&](const std::string& what) {

@@ -75,6 +75,7 @@ class TrainerImpl {
   // dLoss/dparams added into grads_ (zeroed by the caller).
   void FusedForward(StepMetrics& m);
   void FusedBackward();
+  float GatedActionLoss(StepMetrics& m);
   TorchBatch MakeTorchBatch() const;
 
   NetworkConfig network_;
@@ -100,6 +101,7 @@ class TrainerImpl {
   std::vector<float> noise_u_, noise_b_, noise_play_;
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
   std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
+  std::vector<float> grad_blind_head_;              ///< the feature gate's blind branch
   AlignedFloats shifted_demo_y_, shifted_play_y_;   ///< the batch's augmented images
   std::unique_ptr<TorchStep> torch_;                ///< Backend::kTorch only
 };

@@ -187,6 +187,9 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--feature-noise -0.5", "--feature-noise: must be a number from 0 to 10"},
       {"--feature-noise nan", "--feature-noise: must be a number from 0 to 10"},
       {"--feature-noise 11", "--feature-noise: must be a number from 0 to 10"},
+      {"--feature-gate -1", "--feature-gate: must be a number from 0 to 100"},
+      {"--feature-gate 1 --no-feature-gate", "excludes"},
+      {"--ensemble half", "--ensemble: half not in {all,gripper}"},
   };
   for (const auto& c : cases) {
     const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +

@@ -74,6 +74,7 @@ std::vector<OptionCase> NumericOptions() {
       {exp, "--beacon-weight", false},
       {exp, "--play-weight", false},
       {exp, "--feature-noise", false},
+      {exp, "--feature-gate", false},
       {train, "--steps", true},
       {train, "--batch", true},
       {train, "--lr", false},

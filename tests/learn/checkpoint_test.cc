@@ -171,6 +171,39 @@ TEST(CheckpointTest, SpatialSoftmaxModelSavesLoadsAndResumesExactly) {
   EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(bad, data); }), HasSubstr("architecture differs"));
 }
 
+TEST(CheckpointTest, FeatureGateModelSavesLoadsAndResumesExactly) {
+  const Dataset data = MakeImageTask(9, 24, 16, 6);
+  NetworkConfig network = SmallImageNet();
+  network.feature_gate_hidden = {6};
+  TrainConfig train = ShortAuthors(30);
+  train.gate_penalty = 0.5;
+  Trainer straight(data, network, train);
+  straight.Train();
+  const std::string path = TempPath("gate.ckpt");
+  straight.SaveCheckpoint(path);
+  EXPECT_EQ(NetworkConfigFromJson(ReadCheckpointString(path, "network")).feature_gate_hidden,
+            std::vector<int>{6});
+  EXPECT_DOUBLE_EQ(TrainConfigFromJson(ReadCheckpointString(path, "train")).gate_penalty, 0.5);
+  EXPECT_TRUE(BitwiseEqual(Probe(LoadPolicy(path), data), Probe(straight.policy(), data)));
+
+  Trainer first_half(data, network, train);
+  std::atomic<bool> cancel{false};
+  first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step + 1 == 15; });
+  ASSERT_TRUE(first_half.Train(&cancel).cancelled);
+  const std::string half_path = TempPath("gate_half.ckpt");
+  first_half.SaveCheckpoint(half_path);
+  const std::unique_ptr<Trainer> resumed = Trainer::Resume(half_path, data);
+  resumed->Train();
+  const std::string resumed_path = TempPath("gate_resumed.ckpt");
+  resumed->SaveCheckpoint(resumed_path);
+  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+    EXPECT_TRUE(torch::equal(ReadTensor(path, key), ReadTensor(resumed_path, key))) << key;
+  }
+  // The gate trained: its output bias moved from where it starts.
+  const Architecture arch = BuildArchitecture(data.spec, network, Method::kRecon);
+  EXPECT_NE(ReadTensor(path, "params")[arch.gate.back().bias].item<float>(), kGateInitialBias);
+}
+
 TEST(CheckpointTest, ResumeRejectsOtherData) {
   const Dataset data = MakeVectorTask(1, 5);
   Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));

@@ -52,6 +52,7 @@ class TorchModel {
     return Mlp(arch_.policy, torch::cat({x, phi}, 1));
   }
   torch::Tensor Beacon(const torch::Tensor& phi) const { return Mlp(arch_.beacon, phi); }
+  torch::Tensor Gate(const torch::Tensor& x) const { return torch::sigmoid(Mlp(arch_.gate, x)); }
   const torch::Tensor& params() const { return params_; }
 
  private:
@@ -146,7 +147,7 @@ void CheckAgainstAutograd(const Case& c) {
   for (float& v : noise_b) v = static_cast<float>(rng.Normal());
   for (float& v : noise_p) v = static_cast<float>(rng.Normal());
   const bool recon = c.method == Method::kRecon;
-  const float wa = 1.0f, wb = 1.2f, wp = 0.7f;
+  const float wa = 1.0f, wb = 1.2f, wp = 0.7f, wg = 0.8f;  // wg: the gate penalty
 
   // Ours.
   const int64_t y_size = s.YSize();
@@ -162,8 +163,25 @@ void CheckAgainstAutograd(const Case& c) {
   std::vector<float> grads(arch.num_params, 0.0f), g_u(2 * b * u), g_b(2 * b * d), g_p(2 * b * d);
   ForwardFeatures(arch, params.data(), demo);
   ForwardPolicy(arch, params.data(), demo);
-  const float la =
-      HeadLoss(c.loss, demo.policy_head(), target_u.data(), noise_u.data(), b, u, wa, g_u.data());
+  std::vector<float> g_blind(g_u.size());
+  float la = 0;
+  if (arch.has_gate()) {
+    // Per sample: g L(seeing) + (1 - g) L(blind), plus wg times the mean gate (trainer_step.cc).
+    for (int i = 0; i < b; ++i) {
+      const float g = demo.gate_value[i];
+      const float seeing =
+          HeadLoss(c.loss, demo.seeing_head() + 2 * i * u, target_u.data() + i * u,
+                   noise_u.data() + i * u, 1, u, wa * g / b, g_u.data() + 2 * i * u);
+      const float blind =
+          HeadLoss(c.loss, demo.blind_head() + 2 * i * u, target_u.data() + i * u,
+                   noise_u.data() + i * u, 1, u, wa * (1 - g) / b, g_blind.data() + 2 * i * u);
+      la += (g * seeing + (1 - g) * blind) / b;
+      demo.grad_gate[i] = (wa * (seeing - blind) + wg) / b * g * (1 - g);
+    }
+  } else {
+    la =
+        HeadLoss(c.loss, demo.policy_head(), target_u.data(), noise_u.data(), b, u, wa, g_u.data());
+  }
   float lb = 0, lp = 0;
   if (recon) {
     ForwardBeacon(arch, params.data(), demo);
@@ -173,7 +191,8 @@ void CheckAgainstAutograd(const Case& c) {
     ForwardBeacon(arch, params.data(), play);
     lp = HeadLoss(c.loss, play.beacon_head(), play_b.data(), noise_p.data(), b, d, wp, g_p.data());
   }
-  Backward(arch, params.data(), g_u.data(), recon ? g_b.data() : nullptr, demo, grads.data());
+  Backward(arch, params.data(), g_u.data(), recon ? g_b.data() : nullptr, demo, grads.data(),
+           arch.has_gate() ? g_blind.data() : nullptr);
   if (recon) Backward(arch, params.data(), nullptr, g_p.data(), play, grads.data());
 
   // LibTorch.
@@ -182,11 +201,36 @@ void CheckAgainstAutograd(const Case& c) {
   const torch::Tensor tx = Rows(x, b, {s.x_dim}), ty = Rows(y, b, y_shape);
   const torch::Tensor phi = ref.Features(tx, ty);
   const torch::Tensor head_u = ref.Policy(tx, phi);
-  torch::Tensor loss_a = TorchLoss(c.loss, head_u, Rows(target_u, b, {u}), Rows(noise_u, b, {u}));
+  const torch::Tensor tu = Rows(target_u, b, {u}), nu = Rows(noise_u, b, {u});
+  torch::Tensor loss_a;
+  if (arch.has_gate()) {
+    // Written from the definition: the expected loss of looking with probability g, one sample
+    // at a time, and the acting head the g-mixture of the two branches.
+    const torch::Tensor gate = ref.Gate(tx).view({-1});
+    const torch::Tensor head_blind = ref.Policy(tx, torch::zeros_like(phi));
+    loss_a = torch::zeros({});
+    for (int i = 0; i < b; ++i) {
+      const torch::Tensor seeing =
+          TorchLoss(c.loss, head_u.narrow(0, i, 1), tu.narrow(0, i, 1), nu.narrow(0, i, 1));
+      const torch::Tensor blind =
+          TorchLoss(c.loss, head_blind.narrow(0, i, 1), tu.narrow(0, i, 1), nu.narrow(0, i, 1));
+      loss_a = loss_a + (gate[i] * seeing + (1 - gate[i]) * blind) / b;
+    }
+    EXPECT_NEAR(la, loss_a.item<float>(), 1e-4 * std::abs(loss_a.item<float>()) + 1e-6);
+    ExpectClose(demo.gate_value.data(), gate, "gate");
+    ExpectClose(demo.blind_head(), head_blind, "blind head");
+    const torch::Tensor g = gate.unsqueeze(1);
+    ExpectClose(demo.policy_head(), g * head_u + (1 - g) * head_blind, "acting head");
+    loss_a = loss_a + wg / wa * gate.mean();  // times wa below: the penalty is wg
+  } else {
+    loss_a = TorchLoss(c.loss, head_u, tu, nu);
+  }
   torch::Tensor total = wa * loss_a;
   ExpectClose(demo.phi(), phi, "phi");
-  ExpectClose(demo.policy_head(), head_u, "policy head");
-  EXPECT_NEAR(la, loss_a.item<float>(), 1e-4 * std::abs(loss_a.item<float>()) + 1e-6);
+  ExpectClose(demo.seeing_head(), head_u, "policy head");
+  if (!arch.has_gate()) {  // (gated: checked above, before the penalty)
+    EXPECT_NEAR(la, loss_a.item<float>(), 1e-4 * std::abs(loss_a.item<float>()) + 1e-6);
+  }
   if (recon) {
     const torch::Tensor head_b = ref.Beacon(phi);
     const torch::Tensor loss_b =
@@ -226,6 +270,11 @@ void CheckAgainstAutograd(const Case& c) {
   check_mlp(arch.feature, "feature ");
   check_mlp(arch.policy, "policy ");
   check_mlp(arch.beacon, "beacon ");
+  check_mlp(arch.gate, "gate ");
+  if (arch.has_gate()) {
+    // A zero gradient would pass the check vacuously.
+    EXPECT_NE(grads[arch.gate.back().bias], 0.0f);
+  }
 }
 
 class ModelGradientTest : public ::testing::TestWithParam<std::string> {
@@ -308,6 +357,37 @@ TEST_P(ModelGradientTest, SpatialSoftmaxModelsMatchAutograd) {
     c.network.image_scale = 1.0f;
     c.network.spatial_softmax = true;
     c.method = Method::kBaseline;
+    CheckAgainstAutograd(c);
+  }
+}
+
+TEST_P(ModelGradientTest, FeatureGateMatchesAutograd) {
+  {
+    SCOPED_TRACE("RECON, authors' CNN on 3x32x32, gate (8, 4), NLL");
+    Case c;
+    c.data = MakeImageTask(9, 6, 32, 6);
+    c.network.image_scale = 1.0f / 255.0f;
+    c.network.feature_gate_hidden = {8, 4};
+    c.loss = LossKind::kNll;
+    CheckAgainstAutograd(c);
+  }
+  {
+    SCOPED_TRACE("Baseline, keypoints, gate (5), MSE of a sample");
+    Case c;
+    c.data = MakeImageTask(10, 6, 16, 6);
+    c.network = testing::SmallImageNet();
+    c.network.spatial_softmax = true;
+    c.network.feature_gate_hidden = {5};
+    c.method = Method::kBaseline;
+    CheckAgainstAutograd(c);
+  }
+  {
+    SCOPED_TRACE("vector y, gate (6)");
+    Case c;
+    c.data = MakeVectorTask(11, 4, 6);
+    c.network.feature_gate_hidden = {6};
+    c.loss = LossKind::kNll;
+    c.batch = 6;
     CheckAgainstAutograd(c);
   }
 }

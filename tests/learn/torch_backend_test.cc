@@ -107,6 +107,23 @@ std::vector<Case> Cases() {
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
+  // The feature gate with feature noise under it (NetworkConfig::feature_gate_hidden): RECON on
+  // images, the Baseline on vectors.
+  for (bool image : {true, false}) {
+    Case c;
+    c.name = std::string(image ? "image" : "vector") + " feature-gate";
+    c.data = image ? MakeImageTask(26, 24, 32, 12) : MakeVectorTask(27, 20, 40);
+    if (image) c.network.image_scale = 1.0f / 255.0f;
+    c.network.feature_gate_hidden = {16};
+    c.train.restart_rule = false;
+    c.train.method = image ? Method::kRecon : Method::kBaseline;
+    c.train.seed = 8;
+    c.train.play_weight = 0.7;
+    c.train.feature_noise = image ? 0.3 : 0.0;
+    c.train.gate_penalty = 0.6;
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   return cases;
 }
 
@@ -164,6 +181,10 @@ TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
     EXPECT_NEAR(f.last.beacon_loss, t.last.beacon_loss, 1e-5 * std::abs(f.last.beacon_loss));
     EXPECT_NEAR(f.last.play_loss, t.last.play_loss, 1e-5 * std::abs(f.last.play_loss));
     EXPECT_NEAR(f.last.total_loss, t.last.total_loss, 1e-5 * std::abs(f.last.total_loss));
+    EXPECT_NEAR(f.last.gate_mean, t.last.gate_mean, 1e-6);
+    if (c.network.has_feature_gate()) {
+      EXPECT_LT(t.last.gate_mean, 1.0f);  // the gate is on
+    }
     if (c.train.method == Method::kRecon) {
       EXPECT_GT(t.last.play_loss, 0.0f);  // the play term is on
     }
