@@ -1,5 +1,7 @@
 #include "engine/experiments/evaluation.h"
 
+#include <array>
+
 #include "engine/learn/action_ensembler.h"
 
 namespace recon::experiments {
@@ -44,6 +46,12 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
   }
   std::vector<std::vector<float>> xs(n), ys(n);
   std::vector<double> action_error(n, 0.0);
+  // What the feature gate let through (NetworkConfig::feature_gate_hidden), per scenario and
+  // phase (0 before the first grasp, 1 after).
+  const bool gated = policy.has_feature_gate() && !score_actions;
+  std::vector<float> gates;
+  std::vector<std::array<double, 2>> gate_sum(n, {0.0, 0.0});
+  std::vector<std::array<int, 2>> gate_steps(n, {0, 0});
   // A policy that predicts chunks of actions acts on their running ensemble (ACT).
   const int chunk = policy.action_chunk();
   std::vector<learn::ActionEnsembler> ensemblers;
@@ -59,10 +67,20 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
     }
     std::vector<std::vector<float>> actions;
     if (chunk > 1) {
-      actions = policy.ActChunkBatch(xs, ys);
+      actions = policy.ActChunkBatch(xs, ys, gated ? &gates : nullptr);
       for (size_t i = 0; i < n; ++i) actions[i] = ensemblers[i].Step(actions[i]);
     } else {
-      actions = policy.ActBatch(xs, ys);
+      actions = policy.ActBatch(xs, ys, gated ? &gates : nullptr);
+    }
+    if (gated) {
+      for (size_t i = 0; i < n; ++i) {
+        // Before and after the world's first grasp, where it has one ("grasped" in its details).
+        const auto details = scenario_worlds[i]->OutcomeDetails();
+        const auto grasped = details.find("grasped");
+        const int phase = grasped != details.end() && grasped->second > 0 ? 1 : 0;
+        gate_sum[i][phase] += gates[i];
+        ++gate_steps[i][phase];
+      }
     }
     for (size_t i = 0; i < n; ++i) {
       if (score_actions) {
@@ -80,6 +98,16 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
         score_actions ? action_error[i] / steps : scenario_worlds[i]->EpisodeMetric();
     outcomes[i].succeeded = scenario_worlds[i]->TaskSucceeded();
     if (!score_actions) outcomes[i].details = scenario_worlds[i]->OutcomeDetails();
+    if (gated) {
+      std::map<std::string, double>& d = outcomes[i].details;
+      d["feature_gate"] = (gate_sum[i][0] + gate_sum[i][1]) / steps;
+      if (d.count("grasped") > 0) {
+        // A scenario that never grasped has no "after", and reports none.
+        if (gate_steps[i][0] > 0)
+          d["feature_gate_before_grasp"] = gate_sum[i][0] / gate_steps[i][0];
+        if (gate_steps[i][1] > 0) d["feature_gate_after_grasp"] = gate_sum[i][1] / gate_steps[i][1];
+      }
+    }
   }
   return outcomes;
 }
@@ -115,11 +143,17 @@ double SuccessRate(const std::vector<ScenarioOutcome>& outcomes) {
 }
 
 std::map<std::string, double> MeanDetails(const std::vector<ScenarioOutcome>& outcomes) {
+  // Over the scenarios that report each detail (feature_gate_after_grasp only exists after a
+  // grasp): a missing value is not a zero.
   std::map<std::string, double> sums;
+  std::map<std::string, int> counts;
   for (const ScenarioOutcome& o : outcomes) {
-    for (const auto& [key, value] : o.details) sums[key] += value;
+    for (const auto& [key, value] : o.details) {
+      sums[key] += value;
+      ++counts[key];
+    }
   }
-  for (auto& [key, sum] : sums) sum /= static_cast<double>(outcomes.size());
+  for (auto& [key, sum] : sums) sum /= static_cast<double>(counts[key]);
   return sums;
 }
 

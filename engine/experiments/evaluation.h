@@ -17,8 +17,11 @@ using WorldMaker = std::function<std::unique_ptr<worlds::World>()>;
 /// How a policy did on one test scenario.
 struct ScenarioOutcome {
   double metric = 0;
-  bool succeeded = false;                 ///< only meaningful for worlds with HasSuccess()
-  std::map<std::string, double> details;  ///< World::OutcomeDetails() at the end
+  bool succeeded = false;  ///< only meaningful for worlds with HasSuccess()
+  /// World::OutcomeDetails() at the end; with a feature gate also the mean gate over the
+  /// episode (feature_gate) and, in worlds that report "grasped", before and after the first
+  /// grasp (feature_gate_before_grasp, feature_gate_after_grasp: what the policy looked at).
+  std::map<std::string, double> details;
   /// World::ReplayState() after the reset and after each step (EpisodeLength() + 1 states), to
   /// play the rollout back; empty unless asked for, and for worlds without a replay or that
   /// ScoresActions() (whose rollout is the expert's, not the policy's).
@@ -45,7 +48,7 @@ std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,
 /// The metrics of some outcomes, and the fraction that succeeded.
 std::vector<double> Metrics(const std::vector<ScenarioOutcome>& outcomes);
 double SuccessRate(const std::vector<ScenarioOutcome>& outcomes);
-/// The mean of each detail over the outcomes.
+/// The mean of each detail over the outcomes that report it.
 std::map<std::string, double> MeanDetails(const std::vector<ScenarioOutcome>& outcomes);
 
 }  // namespace recon::experiments

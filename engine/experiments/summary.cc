@@ -214,6 +214,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       std::vector<double> metrics, success;
       double attempts = 0, seconds = 0;
       int runs = 0;
+      std::map<std::string, int> detail_runs;  // a detail a run lacks is not a zero
       for (const RunResult& r : result.runs) {
         if (r.condition != c.name || r.demos != demos) continue;
         ++runs;
@@ -222,7 +223,10 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
         if (std::isfinite(r.metric)) {
           metrics.push_back(r.metric);
           success.push_back(r.success_rate);
-          for (const auto& [key, value] : r.details) s.details[key] += value;
+          for (const auto& [key, value] : r.details) {
+            s.details[key] += value;
+            ++detail_runs[key];
+          }
         } else {
           ++s.diverged;
         }
@@ -230,7 +234,7 @@ std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
       s.mean = Mean(metrics);
       s.sem = StandardError(metrics);
       s.n = static_cast<int>(metrics.size());
-      for (auto& [key, value] : s.details) value /= static_cast<double>(metrics.size());
+      for (auto& [key, value] : s.details) value /= static_cast<double>(detail_runs[key]);
       s.success_rate = Mean(success);
       s.success_sem = StandardError(success);
       s.mean_attempts = runs > 0 ? attempts / runs : 0;

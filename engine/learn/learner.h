@@ -200,8 +200,10 @@ class Policy {
   /// Mean action for one observation.
   std::vector<float> Act(const std::vector<float>& x, const std::vector<float>& y) const;
   /// Mean actions for many observations at once (rows), much faster than one at a time.
+  /// `gates` (optional) receives each row's feature gate g(x) (FeatureGate; 1 without one).
   std::vector<std::vector<float>> ActBatch(const std::vector<std::vector<float>>& xs,
-                                           const std::vector<std::vector<float>>& ys) const;
+                                           const std::vector<std::vector<float>>& ys,
+                                           std::vector<float>* gates = nullptr) const;
   /// Actions the policy predicts at once (NetworkConfig::action_chunk; 1 without chunking).
   int action_chunk() const;
   /// The actions acted on as the chunks' ensemble (NetworkConfig::ensembled_actions).
@@ -210,7 +212,10 @@ class Policy {
   /// current step's first. Act and ActBatch return only its first action; a robot that acts on
   /// chunks averages them over steps with an ActionEnsembler.
   std::vector<std::vector<float>> ActChunkBatch(const std::vector<std::vector<float>>& xs,
-                                                const std::vector<std::vector<float>>& ys) const;
+                                                const std::vector<std::vector<float>>& ys,
+                                                std::vector<float>* gates = nullptr) const;
+  /// Whether the policy has a feature gate (NetworkConfig::feature_gate_hidden).
+  bool has_feature_gate() const;
   /// How open the feature gate is for this observation, g(x) in [0, 1] (it reads x alone; 1
   /// without a gate): how much of the camera's features the policy acts on here.
   float FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const;

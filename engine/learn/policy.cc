@@ -25,7 +25,8 @@ PolicyImpl::PolicyImpl(Architecture arch, const std::vector<float>& params, Targ
 
 std::vector<std::vector<float>> PolicyImpl::Run(Output output,
                                                 const std::vector<std::vector<float>>& xs,
-                                                const std::vector<std::vector<float>>& ys) {
+                                                const std::vector<std::vector<float>>& ys,
+                                                std::vector<float>* gates) {
   if (xs.size() != ys.size()) {
     throw UserError("policy input: " + std::to_string(xs.size()) + " x rows but " +
                     std::to_string(ys.size()) + " y rows");
@@ -35,18 +36,19 @@ std::vector<std::vector<float>> PolicyImpl::Run(Output output,
     CheckSize(ys[i], arch_.spec.YSize(), "y", i);
   }
   std::vector<std::vector<float>> result(xs.size());
+  if (gates != nullptr) gates->assign(xs.size(), 1.0f);
   if (output == Output::kBeacon && !arch_.has_beacon_net()) return result;
   std::lock_guard<std::mutex> lock(mutex_);
   for (size_t begin = 0; begin < xs.size(); begin += kMaxChunk) {
     const int count = static_cast<int>(std::min<size_t>(kMaxChunk, xs.size() - begin));
-    RunChunk(output, xs, ys, begin, count, result);
+    RunChunk(output, xs, ys, begin, count, result, gates);
   }
   return result;
 }
 
 void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& xs,
                           const std::vector<std::vector<float>>& ys, size_t begin, int count,
-                          std::vector<std::vector<float>>& result) {
+                          std::vector<std::vector<float>>& result, std::vector<float>* gates) {
   if (buffers_.batch != count) buffers_.Resize(arch_, count);
   const int x_dim = arch_.spec.x_dim;
   const int64_t y_size = arch_.spec.YSize();
@@ -73,6 +75,9 @@ void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& 
     width = output == Output::kActionChunk ? arch_.action_width() : arch_.spec.u_dim;
     scaling_.RestoreActions(buffers_.mutable_policy_head(), count, stride, width);
     rows = buffers_.policy_head();
+    if (gates != nullptr && arch_.has_gate()) {
+      std::copy_n(buffers_.gate_value.data(), count, gates->data() + begin);
+    }
   } else if (output == Output::kGate) {
     if (!arch_.has_gate()) {
       for (int b = 0; b < count; ++b) result[begin + b] = {1.0f};
@@ -116,8 +121,9 @@ std::vector<float> Policy::Act(const std::vector<float>& x, const std::vector<fl
 }
 
 std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<float>>& xs,
-                                                 const std::vector<std::vector<float>>& ys) const {
-  return Require(impl_).Run(PolicyImpl::Output::kAction, xs, ys);
+                                                 const std::vector<std::vector<float>>& ys,
+                                                 std::vector<float>* gates) const {
+  return Require(impl_).Run(PolicyImpl::Output::kAction, xs, ys, gates);
 }
 
 int Policy::action_chunk() const { return Require(impl_).arch().network.action_chunk; }
@@ -126,10 +132,13 @@ const std::vector<int>& Policy::ensembled_actions() const {
   return Require(impl_).arch().network.ensembled_actions;
 }
 
-std::vector<std::vector<float>> Policy::ActChunkBatch(
-    const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys) const {
-  return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys);
+std::vector<std::vector<float>> Policy::ActChunkBatch(const std::vector<std::vector<float>>& xs,
+                                                      const std::vector<std::vector<float>>& ys,
+                                                      std::vector<float>* gates) const {
+  return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys, gates);
 }
+
+bool Policy::has_feature_gate() const { return Require(impl_).arch().has_gate(); }
 
 float Policy::FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const {
   return Require(impl_).Run(PolicyImpl::Output::kGate, {x}, {y}).front().front();

@@ -22,8 +22,10 @@ class PolicyImpl {
 
   /// One row of `output` per observation (action means, beacon means or features). Checks the
   /// sizes of x and y (UserError). Serialised by a mutex: copies of a Policy share this object.
+  /// `gates` (optional, actions only): each observation's feature gate g(x), 1 without a gate.
   std::vector<std::vector<float>> Run(Output output, const std::vector<std::vector<float>>& xs,
-                                      const std::vector<std::vector<float>>& ys);
+                                      const std::vector<std::vector<float>>& ys,
+                                      std::vector<float>* gates = nullptr);
 
   const Architecture& arch() const { return arch_; }
   const AlignedFloats& params() const { return params_; }
@@ -32,7 +34,7 @@ class PolicyImpl {
  private:
   void RunChunk(Output output, const std::vector<std::vector<float>>& xs,
                 const std::vector<std::vector<float>>& ys, size_t begin, int count,
-                std::vector<std::vector<float>>& result);
+                std::vector<std::vector<float>>& result, std::vector<float>* gates);
 
   const Architecture arch_;
   const AlignedFloats params_;

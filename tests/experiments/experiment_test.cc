@@ -1,4 +1,5 @@
 #include "engine/experiments/experiment.h"
+#include "engine/experiments/evaluation.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -70,6 +71,16 @@ TEST(ExperimentTest, ShortRunProducesATableAndIsReproducible) {
   }
   // Paired design: both conditions of a run saw the same training seed.
   EXPECT_EQ(a.runs[0].train_seed, a.runs[2].train_seed);
+}
+
+TEST(ExperimentTest, ADetailIsAveragedOverTheScenariosThatReportIt) {
+  std::vector<ScenarioOutcome> outcomes(3);
+  outcomes[0].details = {{"grasped", 1.0}, {"feature_gate_after_grasp", 0.8}};
+  outcomes[1].details = {{"grasped", 0.0}};
+  outcomes[2].details = {{"grasped", 1.0}, {"feature_gate_after_grasp", 0.6}};
+  const std::map<std::string, double> mean = MeanDetails(outcomes);
+  EXPECT_NEAR(mean.at("grasped"), 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(mean.at("feature_gate_after_grasp"), 0.7, 1e-12);  // not (0.8 + 0.6) / 3
 }
 
 TEST(ExperimentTest, OutputsAreWrittenAndSummaryHasTheDocumentedShape) {

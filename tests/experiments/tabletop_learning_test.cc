@@ -67,5 +67,39 @@ TEST(TabletopLearningTest, APolicyTrainedOnTwoDemonstrationsRepeatsThem) {
   }
 }
 
+// With a feature gate the rollout reports what the policy looked at, before and after the
+// grasp, as gates in [0, 1]; without one it reports nothing of the kind.
+TEST(TabletopLearningTest, AGatedPolicyReportsItsGateBeforeAndAfterTheGrasp) {
+  const std::vector<uint64_t> scenes = {1000};
+  const std::unique_ptr<worlds::World> world = WideStateWorld();
+  const Dataset data = worlds::RecordDemonstrations(*world, scenes, 0);
+  WorldRecipe recipe = RecipeForWorld("tabletop-state", false);
+  recipe.network.feature_gate_hidden = kFeatureGateHidden;
+  learn::TrainConfig train = recipe.train;
+  train.method = learn::Method::kBaseline;
+  train.steps = 50;  // the gate's report, not its training, is under test
+  train.gate_penalty = 1.0;
+  learn::Trainer gated(data, recipe.network, train);
+  gated.Train();
+  const ScenarioOutcome o =
+      EvaluatePolicy([] { return WideStateWorld(); }, gated.policy(), scenes).front();
+  for (const char* key : {"feature_gate", "feature_gate_before_grasp"}) {
+    ASSERT_EQ(o.details.count(key), 1u) << key;
+    EXPECT_GT(o.details.at(key), 0.0) << key;
+    EXPECT_LT(o.details.at(key), 1.0) << key;
+  }
+  // After 50 steps it has not grasped: there is no "after", and none is made up.
+  if (o.details.at("grasped") == 0.0) {
+    EXPECT_EQ(o.details.count("feature_gate_after_grasp"), 0u);
+  }
+
+  recipe.network.feature_gate_hidden.clear();
+  learn::Trainer plain(data, recipe.network, train);
+  plain.Train();
+  const ScenarioOutcome p =
+      EvaluatePolicy([] { return WideStateWorld(); }, plain.policy(), scenes).front();
+  EXPECT_EQ(p.details.count("feature_gate"), 0u);
+}
+
 }  // namespace
 }  // namespace recon::experiments
