@@ -66,7 +66,7 @@ struct ExperimentFlags {
   double demo_noise = 0.0;     ///< only when --demo-noise is given; else the world's default
   int random_shift = -1;       ///< -1: the world's recipe
   double feature_noise = 0.0;  ///< only when --feature-noise was given
-  double feature_gate = 0.0;   ///< the gate penalty, only when --feature-gate was given
+  double feature_gate = 0.0;   ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   int action_chunk = -1;            ///< -1: the world's recipe
   std::string ensemble;             ///< "all" | "gripper"; empty: the world's recipe
@@ -162,13 +162,13 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.train.feature_noise =
       given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
   config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
-  config.train.gate_penalty = recipe.train.gate_penalty;
+  config.train.gate_margin = recipe.train.gate_margin;
   if (given("--feature-gate")) {
     config.network.feature_gate_hidden = experiments::kFeatureGateHidden;
-    config.train.gate_penalty = flags.feature_gate;
+    config.train.gate_margin = flags.feature_gate;
   } else if (flags.no_feature_gate) {
     config.network.feature_gate_hidden.clear();
-    config.train.gate_penalty = 0.0;
+    config.train.gate_margin = 0.0;
   }
   if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
     config.train.random_shift_px = 0;  // vector observations have no pixels to shift
@@ -358,8 +358,8 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
           ->add_option("--feature-gate", flags->feature_gate,
                        "a gate on the robot state that shuts the features out of the policy "
                        "where they do not help, trained with this penalty on its mean (0-" +
-                           FormatNumber(learn::kMaxGatePenalty) + "; default: the world's recipe)")
-          ->check(NumberBetween(0, learn::kMaxGatePenalty));
+                           FormatNumber(learn::kMaxGateMargin) + "; default: the world's recipe)")
+          ->check(NumberBetween(0, learn::kMaxGateMargin));
   command->add_flag("--no-feature-gate", flags->no_feature_gate, "no feature gate")->excludes(gate);
   command
       ->add_option("--action-chunk", flags->action_chunk,

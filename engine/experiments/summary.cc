@@ -135,7 +135,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"standardize_inputs", config.train.standardize_inputs},
       {"random_shift_px", config.train.random_shift_px},
       {"feature_noise", config.train.feature_noise},
-      {"gate_penalty", config.train.gate_penalty},
+      {"gate_margin", config.train.gate_margin},
       {"play_per_scenario", config.play_per_scenario}};
   json network = {{"feature_dim", config.network.feature_dim},
                   {"policy_hidden", config.network.policy_hidden},

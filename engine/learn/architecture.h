@@ -17,7 +17,7 @@ enum class Activation { kNone, kRelu, kTanh };
 /// The longest action chunk a policy may predict (NetworkConfig::action_chunk): 10 s at 10 Hz.
 constexpr int kMaxActionChunk = 100;
 /// The feature gate's initial output bias: sigmoid(2) = 0.88, open, so the policy first learns
-/// to use the features and the gate penalty then shuts them out where they do not help.
+/// to use the features and the gate margin then shuts them out where they do not help.
 constexpr float kGateInitialBias = 2.0f;
 
 /// A fully connected layer y = act(W x + bias); W is row-major [out][in] (PyTorch's layout).

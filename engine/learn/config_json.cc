@@ -61,7 +61,7 @@ std::string ToJson(const TrainConfig& t) {
   j["standardize_targets"] = t.standardize_targets;
   j["random_shift_px"] = t.random_shift_px;
   j["feature_noise"] = t.feature_noise;
-  j["gate_penalty"] = t.gate_penalty;
+  j["gate_margin"] = t.gate_margin;
   j["standardize_inputs"] = t.standardize_inputs;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
@@ -129,7 +129,7 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   // Checkpoints from before augmentation existed trained without it.
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
-  if (j.contains("gate_penalty")) Read(j, "gate_penalty", t.gate_penalty, what);
+  if (j.contains("gate_margin")) Read(j, "gate_margin", t.gate_margin, what);
   if (j.contains("standardize_inputs")) {
     Read(j, "standardize_inputs", t.standardize_inputs, what);
   }

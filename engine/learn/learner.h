@@ -83,12 +83,14 @@ struct NetworkConfig {
   /// after a close that came late).
   std::vector<int> ensembled_actions;
   /// A feature gate: a small network on the robot state x alone (these tanh hidden layers, then
-  /// one sigmoid unit) gives g(x) in [0, 1], the probability that the policy looks at the
-  /// features. The policy network runs twice, seeing [x, phi] and blind [x, 0], and the robot
-  /// acts on g seeing + (1 - g) blind. Trained with TrainConfig::gate_penalty, the gate learns
-  /// to shut the camera out of the states where the teacher's actions do not depend on it (for
-  /// the tabletop: the approach to the toast, the same in every scene), so what the features
-  /// pick up there (the bowl) cannot move the arm. Empty (the default) = no gate, as the paper.
+  /// one sigmoid unit) gives g(x) in [0, 1], how much the policy looks at the features. The
+  /// policy network runs twice, seeing [x, phi] and blind [x, 0], both trained on every sample,
+  /// and the robot acts on g seeing + (1 - g) blind. The gate is trained as a classifier of
+  /// where seeing pays: the target of a sample is 1 when the blind branch's action loss exceeds
+  /// the seeing branch's by more than TrainConfig::gate_margin (per action), else 0. For the
+  /// tabletop it can learn to shut the camera out of the approach to the toast (the same in
+  /// every scene), so what the features pick up there (the bowl) cannot move the arm. Empty
+  /// (the default) = no gate, as in the paper.
   std::vector<int> feature_gate_hidden;
 
   bool has_feature_gate() const { return !feature_gate_hidden.empty(); }
@@ -97,9 +99,8 @@ struct NetworkConfig {
 
 /// The largest TrainConfig::feature_noise accepted (in standard deviations of each feature).
 constexpr double kMaxFeatureNoise = 10.0;
-/// The largest TrainConfig::gate_penalty accepted (per unit of the mean gate, against a loss
-/// per sample of a few nats).
-constexpr double kMaxGatePenalty = 100.0;
+/// The largest TrainConfig::gate_margin accepted (nats per action).
+constexpr double kMaxGateMargin = 100.0;
 
 /// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
 /// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).
@@ -146,13 +147,14 @@ struct TrainConfig {
   /// spread, so the feature net cannot outgrow it by scaling up. 0 = off (nothing drawn, results
   /// unchanged); at most kMaxFeatureNoise.
   double feature_noise = 0.0;
-  /// With a feature gate (NetworkConfig::feature_gate_hidden) the action term is, per sample,
-  /// g L(seeing) + (1 - g) L(blind), the expected loss of a policy that looks with probability
-  /// g, and the loss gains gate_penalty times the batch's mean gate. Its slope in g is
-  /// L(seeing) - L(blind) + gate_penalty, so the gate shuts wherever the features lower the
-  /// action loss (per action, in nats under the NLL) by less than gate_penalty. A gate that
-  /// scaled phi instead could shrink for free while the policy's weights grew to undo it.
-  double gate_penalty = 0.0;
+  /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
+  /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
+  /// there. The loss gains the blind branch's action term and the gate's binary cross-entropy
+  /// against these targets (held constant in the gradient: the gate does not push either
+  /// branch). A first version trained g L(seeing) + (1 - g) L(blind) + margin g instead: its
+  /// gate saturated shut everywhere within the first steps, before the seeing branch had
+  /// learnt where it pays, and a saturated sigmoid has no gradient to reopen.
+  double gate_margin = 0.0;
 
   bool operator==(const TrainConfig& other) const = default;
 };
@@ -168,7 +170,9 @@ struct StepMetrics {
   float beacon_loss = 0;
   float play_loss = 0;
   float total_loss = 0;
-  float gate_mean = 1;  ///< the feature gate's mean over the batch (1: no gate, always open)
+  float gate_mean = 1;   ///< the feature gate's mean over the batch (1: no gate, always open)
+  float blind_loss = 0;  ///< the gate's blind branch: its action term (as action_loss)
+  float gate_loss = 0;   ///< the gate's cross-entropy against where seeing pays
 };
 
 struct TrainResult {

@@ -49,10 +49,10 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     std::to_string(kMaxRandomShiftPx) + " pixels (got " +
                     std::to_string(train.random_shift_px) + ")");
   }
-  if (!std::isfinite(train.gate_penalty) || train.gate_penalty < 0 ||
-      train.gate_penalty > kMaxGatePenalty) {
-    throw UserError("train config: gate_penalty must be between 0 and " +
-                    FormatNumber(kMaxGatePenalty) + " (got " + FormatNumber(train.gate_penalty) +
+  if (!std::isfinite(train.gate_margin) || train.gate_margin < 0 ||
+      train.gate_margin > kMaxGateMargin) {
+    throw UserError("train config: gate_margin must be between 0 and " +
+                    FormatNumber(kMaxGateMargin) + " (got " + FormatNumber(train.gate_margin) +
                     ")");
   }
   if (!std::isfinite(train.feature_noise) || train.feature_noise < 0 ||

@@ -160,26 +160,26 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   // Per action of the chunk, as the fused backend does (trainer.cc).
   const at::Tensor target_u = Wrap(batch.target_u, {n, s.arch.action_width()});
   const at::Tensor seeing = s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1));
-  at::Tensor action;
-  at::Tensor gate;
-  if (s.arch.has_gate()) {
-    // As GatedActionLoss (trainer_step.cc): g L_seeing + (1 - g) L_blind per sample.
-    gate = at::sigmoid(s.Mlp(s.arch.gate, params, x)).squeeze(1);
-    const at::Tensor blind =
-        s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
-    action = (gate * SampleLoss(kind, seeing, target_u, batch.noise_u) +
-              (1 - gate) * SampleLoss(kind, blind, target_u, batch.noise_u))
-                 .mean();
-  } else {
-    action = HeadLoss(kind, seeing, target_u, batch.noise_u);
-  }
-  action = action / static_cast<double>(s.arch.network.action_chunk);
+  const double chunk = static_cast<double>(s.arch.network.action_chunk);
+  const at::Tensor seeing_loss = SampleLoss(kind, seeing, target_u, batch.noise_u);
+  const at::Tensor action = seeing_loss.mean() / chunk;
   at::Tensor total = action * s.train.action_weight;
   metrics.action_loss = action.item<float>();
-  if (gate.defined()) {
-    const at::Tensor gate_mean = gate.mean();
-    total = total + gate_mean * s.train.gate_penalty;
-    metrics.gate_mean = gate_mean.item<float>();
+  if (s.arch.has_gate()) {
+    // As GatedActionLoss (trainer_step.cc): the blind branch on every sample, and the gate's
+    // cross-entropy against where seeing lowers the loss by more than the margin.
+    const at::Tensor logit = s.Mlp(s.arch.gate, params, x).squeeze(1);
+    const at::Tensor blind =
+        s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
+    const at::Tensor blind_loss = SampleLoss(kind, blind, target_u, batch.noise_u);
+    const at::Tensor target =
+        ((blind_loss - seeing_loss).detach() / chunk > s.train.gate_margin).to(at::kFloat);
+    const at::Tensor gate_loss = at::binary_cross_entropy_with_logits(logit, target);
+    const at::Tensor blind_action = blind_loss.mean() / chunk;
+    total = total + blind_action * s.train.action_weight + gate_loss;
+    metrics.blind_loss = blind_action.item<float>();
+    metrics.gate_loss = gate_loss.item<float>();
+    metrics.gate_mean = at::sigmoid(logit).mean().item<float>();
   }
   if (s.arch.has_beacon_net()) {
     const at::Tensor beacon = HeadLoss(kind, s.Mlp(s.arch.beacon, params, phi),

@@ -160,7 +160,7 @@ void TrainerImpl::Step() {
   double total = train_.action_weight * m.action_loss;
   if (arch_.has_beacon_net()) total += train_.beacon_weight * m.beacon_loss;
   if (UsesPlay()) total += train_.play_weight * m.play_loss;
-  if (arch_.has_gate()) total += train_.gate_penalty * m.gate_mean;
+  if (arch_.has_gate()) total += train_.action_weight * m.blind_loss + m.gate_loss;
   m.total_loss = static_cast<float>(total);
 
   auto diverged = [&](const std::string& what) {

@@ -1,6 +1,9 @@
 // The backend-specific half of a training step (TrainerImpl::Step): the forward pass and losses
 // on our own kernels and their backward pass, or the batch handed to the Torch backend.
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/learn/augmentation.h"
 #include "engine/learn/losses.h"
 #include "engine/learn/trainer_impl.h"
@@ -45,32 +48,37 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
   }
 }
 
-// The feature gate's action term: per sample, the seeing branch's loss with weight g and the
-// blind branch's with weight 1 - g (the expected loss of a policy that looks at the features
-// with probability g), so d/dg = L_seeing - L_blind + the penalty's slope: the gate shuts
-// wherever the features lower the loss by less than gate_penalty.
+// The feature gate's terms (NetworkConfig::feature_gate_hidden): both branches' action losses on
+// every sample, and the gate's cross-entropy against "seeing lowers this sample's loss by more
+// than gate_margin per action". Returns the seeing branch's action term; the blind branch's and
+// the gate's go to `m`.
 float TrainerImpl::GatedActionLoss(StepMetrics& m) {
   const int batch = train_.batch_size, width = arch_.action_width();
-  const float weight = static_cast<float>(train_.action_weight) /
-                       static_cast<float>(network_.action_chunk) / static_cast<float>(batch);
-  double loss = 0, gate_sum = 0;
+  const float chunk = static_cast<float>(network_.action_chunk);
+  const float weight = static_cast<float>(train_.action_weight) / chunk / static_cast<float>(batch);
+  const float* z = demo_.gate.output();
+  double seeing_sum = 0, blind_sum = 0, gate_loss = 0, gate_sum = 0;
   for (int b = 0; b < batch; ++b) {
-    const float g = demo_.gate_value[b];
     const size_t head = static_cast<size_t>(b) * 2 * width, row = static_cast<size_t>(b) * width;
     const float seeing =
         HeadLoss(train_.loss, demo_.seeing_head() + head, target_u_.data() + row,
-                 noise_u_.data() + row, 1, width, weight * g, grad_policy_head_.data() + head);
-    const float blind = HeadLoss(train_.loss, demo_.blind_head() + head, target_u_.data() + row,
-                                 noise_u_.data() + row, 1, width, weight * (1.0f - g),
-                                 grad_blind_head_.data() + head);
-    loss += g * seeing + (1.0f - g) * blind;
-    gate_sum += g;
-    demo_.grad_gate[b] = (weight * (seeing - blind) +
-                          static_cast<float>(train_.gate_penalty) / static_cast<float>(batch)) *
-                         g * (1.0f - g);
+                 noise_u_.data() + row, 1, width, weight, grad_policy_head_.data() + head);
+    const float blind =
+        HeadLoss(train_.loss, demo_.blind_head() + head, target_u_.data() + row,
+                 noise_u_.data() + row, 1, width, weight, grad_blind_head_.data() + head);
+    seeing_sum += seeing;
+    blind_sum += blind;
+    const float target = (blind - seeing) / chunk > train_.gate_margin ? 1.0f : 0.0f;
+    // Cross-entropy from the logit z: softplus(z) - t z, whose slope is sigmoid(z) - t.
+    const double zb = z[b];
+    gate_loss += std::max(zb, 0.0) + std::log1p(std::exp(-std::abs(zb))) - target * zb;
+    demo_.grad_gate[b] = (demo_.gate_value[b] - target) / static_cast<float>(batch);
+    gate_sum += demo_.gate_value[b];
   }
   m.gate_mean = static_cast<float>(gate_sum / batch);
-  return static_cast<float>(loss / batch);
+  m.gate_loss = static_cast<float>(gate_loss / batch);
+  m.blind_loss = static_cast<float>(blind_sum / batch / chunk);
+  return static_cast<float>(seeing_sum / batch);
 }
 
 void TrainerImpl::FusedBackward() {

@@ -78,7 +78,7 @@ TEST(TabletopLearningTest, AGatedPolicyReportsItsGateBeforeAndAfterTheGrasp) {
   learn::TrainConfig train = recipe.train;
   train.method = learn::Method::kBaseline;
   train.steps = 50;  // the gate's report, not its training, is under test
-  train.gate_penalty = 1.0;
+  train.gate_margin = 1.0;
   learn::Trainer gated(data, recipe.network, train);
   gated.Train();
   const ScenarioOutcome o =

@@ -176,14 +176,14 @@ TEST(CheckpointTest, FeatureGateModelSavesLoadsAndResumesExactly) {
   NetworkConfig network = SmallImageNet();
   network.feature_gate_hidden = {6};
   TrainConfig train = ShortAuthors(30);
-  train.gate_penalty = 0.5;
+  train.gate_margin = 0.5;
   Trainer straight(data, network, train);
   straight.Train();
   const std::string path = TempPath("gate.ckpt");
   straight.SaveCheckpoint(path);
   EXPECT_EQ(NetworkConfigFromJson(ReadCheckpointString(path, "network")).feature_gate_hidden,
             std::vector<int>{6});
-  EXPECT_DOUBLE_EQ(TrainConfigFromJson(ReadCheckpointString(path, "train")).gate_penalty, 0.5);
+  EXPECT_DOUBLE_EQ(TrainConfigFromJson(ReadCheckpointString(path, "train")).gate_margin, 0.5);
   EXPECT_TRUE(BitwiseEqual(Probe(LoadPolicy(path), data), Probe(straight.policy(), data)));
 
   Trainer first_half(data, network, train);

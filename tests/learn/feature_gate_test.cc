@@ -50,13 +50,13 @@ double MeanGate(const Policy& policy, const Dataset& data, float phase) {
   return sum / n;
 }
 
-TrainConfig GateTraining(double penalty) {
+TrainConfig GateTraining(double margin) {
   TrainConfig train;
   train.method = Method::kBaseline;
   train.steps = 3000;
   train.learning_rate = 1e-3;
   train.seed = 3;
-  train.gate_penalty = penalty;
+  train.gate_margin = margin;
   return train;
 }
 
@@ -67,7 +67,7 @@ TEST(FeatureGateTest, ShutsWhereTheActionIgnoresTheFeaturesAndOpensWhereItNeedsT
   network.policy_hidden = {64, 64};
   network.feature_gate_hidden = {16};
   // The features are worth several nats per sample in phase +1 and nothing in phase -1 (which
-  // x alone predicts); a penalty of 2 nats lies between.
+  // x alone predicts); a margin of 2 nats lies between.
   Trainer trainer(data, network, GateTraining(2.0));
   trainer.Train();
   const double approach = MeanGate(trainer.policy(), data, -1.0f);
@@ -76,7 +76,7 @@ TEST(FeatureGateTest, ShutsWhereTheActionIgnoresTheFeaturesAndOpensWhereItNeedsT
   EXPECT_GT(delivery, 0.8) << "phase +1 does";
 }
 
-TEST(FeatureGateTest, APenaltyAboveWhatTheFeaturesAreWorthShutsItEverywhere) {
+TEST(FeatureGateTest, AMarginAboveWhatTheFeaturesAreWorthShutsItEverywhere) {
   const Dataset data = PhaseTask(1);
   NetworkConfig network;
   network.feature_mlp_hidden = {32, 32};

@@ -147,7 +147,8 @@ void CheckAgainstAutograd(const Case& c) {
   for (float& v : noise_b) v = static_cast<float>(rng.Normal());
   for (float& v : noise_p) v = static_cast<float>(rng.Normal());
   const bool recon = c.method == Method::kRecon;
-  const float wa = 1.0f, wb = 1.2f, wp = 0.7f, wg = 0.8f;  // wg: the gate penalty
+  // margin: the feature gate's (0: the targets are where seeing beats blind at all, a mix).
+  const float wa = 1.0f, wb = 1.2f, wp = 0.7f, margin = 0.0f;
 
   // Ours.
   const int64_t y_size = s.YSize();
@@ -165,18 +166,19 @@ void CheckAgainstAutograd(const Case& c) {
   ForwardPolicy(arch, params.data(), demo);
   std::vector<float> g_blind(g_u.size());
   float la = 0;
+  std::vector<float> gate_targets;
   if (arch.has_gate()) {
-    // Per sample: g L(seeing) + (1 - g) L(blind), plus wg times the mean gate (trainer_step.cc).
+    // Both branches on every sample; the gate's cross-entropy against "seeing pays by more than
+    // the margin", whose slope in the logit is g - t (trainer_step.cc).
     for (int i = 0; i < b; ++i) {
-      const float g = demo.gate_value[i];
-      const float seeing =
-          HeadLoss(c.loss, demo.seeing_head() + 2 * i * u, target_u.data() + i * u,
-                   noise_u.data() + i * u, 1, u, wa * g / b, g_u.data() + 2 * i * u);
+      const float seeing = HeadLoss(c.loss, demo.seeing_head() + 2 * i * u, target_u.data() + i * u,
+                                    noise_u.data() + i * u, 1, u, wa / b, g_u.data() + 2 * i * u);
       const float blind =
           HeadLoss(c.loss, demo.blind_head() + 2 * i * u, target_u.data() + i * u,
-                   noise_u.data() + i * u, 1, u, wa * (1 - g) / b, g_blind.data() + 2 * i * u);
-      la += (g * seeing + (1 - g) * blind) / b;
-      demo.grad_gate[i] = (wa * (seeing - blind) + wg) / b * g * (1 - g);
+                   noise_u.data() + i * u, 1, u, wa / b, g_blind.data() + 2 * i * u);
+      la += seeing / b;
+      gate_targets.push_back(blind - seeing > margin ? 1.0f : 0.0f);
+      demo.grad_gate[i] = (demo.gate_value[i] - gate_targets.back()) / b;
     }
   } else {
     la =
@@ -204,24 +206,30 @@ void CheckAgainstAutograd(const Case& c) {
   const torch::Tensor tu = Rows(target_u, b, {u}), nu = Rows(noise_u, b, {u});
   torch::Tensor loss_a;
   if (arch.has_gate()) {
-    // Written from the definition: the expected loss of looking with probability g, one sample
-    // at a time, and the acting head the g-mixture of the two branches.
+    // Written from the definition, one sample at a time: both branches' losses, and the gate's
+    // binary cross-entropy against where seeing beats blind by more than the margin (a
+    // constant target); the acting head the g-mixture of the two branches.
     const torch::Tensor gate = ref.Gate(tx).view({-1});
     const torch::Tensor head_blind = ref.Policy(tx, torch::zeros_like(phi));
     loss_a = torch::zeros({});
+    torch::Tensor seeing_mean = torch::zeros({});
     for (int i = 0; i < b; ++i) {
       const torch::Tensor seeing =
           TorchLoss(c.loss, head_u.narrow(0, i, 1), tu.narrow(0, i, 1), nu.narrow(0, i, 1));
       const torch::Tensor blind =
           TorchLoss(c.loss, head_blind.narrow(0, i, 1), tu.narrow(0, i, 1), nu.narrow(0, i, 1));
-      loss_a = loss_a + (gate[i] * seeing + (1 - gate[i]) * blind) / b;
+      const float t = (blind - seeing).item<float>() > margin ? 1.0f : 0.0f;
+      EXPECT_EQ(t, gate_targets[i]) << "sample " << i;
+      seeing_mean = seeing_mean + seeing / b;
+      // The cross-entropy enters the total once, not times wa: divided here, as wa multiplies.
+      const torch::Tensor bce = -(t * torch::log(gate[i]) + (1 - t) * torch::log(1 - gate[i]));
+      loss_a = loss_a + (seeing + blind) / b + bce / (b * wa);
     }
-    EXPECT_NEAR(la, loss_a.item<float>(), 1e-4 * std::abs(loss_a.item<float>()) + 1e-6);
+    EXPECT_NEAR(la, seeing_mean.item<float>(), 1e-4 * std::abs(seeing_mean.item<float>()) + 1e-6);
     ExpectClose(demo.gate_value.data(), gate, "gate");
     ExpectClose(demo.blind_head(), head_blind, "blind head");
     const torch::Tensor g = gate.unsqueeze(1);
     ExpectClose(demo.policy_head(), g * head_u + (1 - g) * head_blind, "acting head");
-    loss_a = loss_a + wg / wa * gate.mean();  // times wa below: the penalty is wg
   } else {
     loss_a = TorchLoss(c.loss, head_u, tu, nu);
   }

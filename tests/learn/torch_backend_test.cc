@@ -120,7 +120,7 @@ std::vector<Case> Cases() {
     c.train.seed = 8;
     c.train.play_weight = 0.7;
     c.train.feature_noise = image ? 0.3 : 0.0;
-    c.train.gate_penalty = 0.6;
+    c.train.gate_margin = 0.6;
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
@@ -182,6 +182,8 @@ TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
     EXPECT_NEAR(f.last.play_loss, t.last.play_loss, 1e-5 * std::abs(f.last.play_loss));
     EXPECT_NEAR(f.last.total_loss, t.last.total_loss, 1e-5 * std::abs(f.last.total_loss));
     EXPECT_NEAR(f.last.gate_mean, t.last.gate_mean, 1e-6);
+    EXPECT_NEAR(f.last.blind_loss, t.last.blind_loss, 1e-5 * std::abs(f.last.blind_loss));
+    EXPECT_NEAR(f.last.gate_loss, t.last.gate_loss, 1e-5 * std::abs(f.last.gate_loss) + 1e-7);
     if (c.network.has_feature_gate()) {
       EXPECT_LT(t.last.gate_mean, 1.0f);  // the gate is on
     }
