@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "engine/core/number_check.h"
+
 namespace recon::cli {
 
 /// A finite number from `min` to `max` inclusive.
@@ -45,8 +47,7 @@ constexpr long long kMaxImageSide = 8192;  ///< a rendered image's width or heig
 /// The most threads or parallel jobs an option may ask for: 4 per core (at least 4).
 long long ParallelismLimit();
 
-/// The message a check gives for `text` ("" if it passes); exposed for tests.
-std::string CheckNumber(const std::string& text, double min, double max, bool whole,
-                        bool min_exclusive);
+/// The message a check gives for `text` ("" if it passes): recon::CheckNumber, here for tests.
+using recon::CheckNumber;
 
 }  // namespace recon::cli

@@ -60,12 +60,17 @@ TrainConfig GateTraining(double margin) {
   return train;
 }
 
-TEST(FeatureGateTest, ShutsWhereTheActionIgnoresTheFeaturesAndOpensWhereItNeedsThem) {
-  const Dataset data = PhaseTask(1);
+NetworkConfig GatedNetwork() {
   NetworkConfig network;
   network.feature_mlp_hidden = {32, 32};
   network.policy_hidden = {64, 64};
   network.feature_gate_hidden = {16};
+  return network;
+}
+
+TEST(FeatureGateTest, ShutsWhereTheActionIgnoresTheFeaturesAndOpensWhereItNeedsThem) {
+  const Dataset data = PhaseTask(1);
+  const NetworkConfig network = GatedNetwork();
   // The features are worth several nats per sample in phase +1 and nothing in phase -1 (which
   // x alone predicts); a margin of 2 nats lies between.
   Trainer trainer(data, network, GateTraining(2.0));
@@ -78,10 +83,7 @@ TEST(FeatureGateTest, ShutsWhereTheActionIgnoresTheFeaturesAndOpensWhereItNeedsT
 
 TEST(FeatureGateTest, AMarginAboveWhatTheFeaturesAreWorthShutsItEverywhere) {
   const Dataset data = PhaseTask(1);
-  NetworkConfig network;
-  network.feature_mlp_hidden = {32, 32};
-  network.policy_hidden = {64, 64};
-  network.feature_gate_hidden = {16};
+  const NetworkConfig network = GatedNetwork();
   Trainer trainer(data, network, GateTraining(20.0));
   trainer.Train();
   EXPECT_LT(MeanGate(trainer.policy(), data, 1.0f), 0.2);

@@ -2,14 +2,12 @@
 
 #include <imgui.h>
 
-#include <cerrno>
-#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
 #include "engine/core/error.h"
-#include "engine/core/strings.h"
+#include "engine/core/number_check.h"
 
 namespace recon::ui {
 
@@ -17,25 +15,16 @@ namespace {
 
 constexpr const char* kVerbs = "click, type, press, hold, wait, sleep, wait-idle, screenshot";
 
-/// The whole of `text` as a number in [lo, hi]: "3abc", "1e999", "nan" and "" are refused,
-/// naming what the number is for.
-double ParseBounded(const std::string& text, const std::string& what, double lo, double hi) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(begin, &end);
-  const bool whole = end != begin && *end == '\0';
-  if (!whole || errno == ERANGE || !std::isfinite(value) || value < lo || value > hi) {
-    throw UserError(what + " must be a number from " + FormatNumber(lo) + " to " +
-                    FormatNumber(hi) + ", not '" + text + "'");
-  }
-  return value;
+// A number of a script line, checked as a command-line option's is (engine/core/number_check).
+double ParseNumber(const std::string& text, const std::string& what, double lo, double hi,
+                   bool whole, bool above_lo) {
+  const std::string problem = CheckNumber(text, lo, hi, whole, above_lo);
+  if (!problem.empty()) throw UserError(what + ": " + problem);
+  return std::strtod(text.c_str(), nullptr);
 }
 
 double ParseSeconds(const std::string& text, const std::string& verb) {
-  const double seconds = ParseBounded(text, verb + "'s seconds", 0.0, kMaxScriptSeconds);
-  if (!(seconds > 0)) throw UserError(verb + " needs more than 0 seconds, not '" + text + "'");
-  return seconds;
+  return ParseNumber(text, verb + "'s seconds", 0.0, kMaxScriptSeconds, false, true);
 }
 
 int ParseKey(const std::string& name) {
@@ -94,11 +83,8 @@ ScriptStep ParseStep(const std::string& verb, const std::string& argument) {
     step.seconds = ParseSeconds(argument, "sleep");
   } else if (verb == "wait") {
     step.verb = ScriptStep::Verb::kWait;
-    const double frames = ParseBounded(argument, "wait's frames", 0, kMaxScriptFrames);
-    if (frames != std::floor(frames)) {
-      throw UserError("wait counts whole frames, not '" + argument + "'");
-    }
-    step.frames = static_cast<int>(frames);
+    step.frames =
+        static_cast<int>(ParseNumber(argument, "wait's frames", 0, kMaxScriptFrames, true, false));
   } else if (verb == "wait-idle") {
     step.verb = ScriptStep::Verb::kWaitIdle;
     step.seconds = argument.empty() ? 600.0 : ParseSeconds(argument, "wait-idle");
