@@ -156,7 +156,9 @@ int main(int argc, char** argv) {
                  "session folder (created if new); without, the studio starts at the session "
                  "picker with the recent sessions");
   app.add_option("--world", flags.options.world, "task of a new session")->capture_default_str();
-  app.add_option("--seed", flags.options.seed, "seed of a new session")->capture_default_str();
+  app.add_option("--seed", flags.options.seed, "seed of a new session")
+      ->check(recon::cli::SeedNumber())
+      ->capture_default_str();
   app.add_option("--layout", flags.options.layout,
                  "scene layout of a new tabletop session: paper (the plate at one of two "
                  "places, 2 demonstrations per configuration) or wide")
@@ -169,7 +171,7 @@ int main(int argc, char** argv) {
   app.add_option("--demo-noise", flags.options.demo_noise_sigma,
                  "noise injected into the executed joint velocities while demonstrating in a new "
                  "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")
-      ->check(recon::cli::NumberBetween(0, 1));
+      ->check(recon::cli::NumberBetween(0, recon::cli::kMaxDemoNoise_rad_s));
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
   app.add_option("--cell", flags.options.cell_profile,
                  "teach with the real devices of this cell profile (JSON: camera, beacons, UR "

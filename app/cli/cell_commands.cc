@@ -127,6 +127,7 @@ void AddCellCommands(CLI::App& app) {
   render->add_option("--camera", render_flags->camera,
                      "camera name (default: top; overhead for bintransfer)");
   render->add_option("--seed", render_flags->seed, "scenario seed (tabletop, bintransfer layout)")
+      ->check(SeedNumber())
       ->capture_default_str();
   render->add_option("--width", render_flags->width, "image width")
       ->check(WholeBetween(1, kMaxImageSide))
@@ -146,11 +147,12 @@ void AddCellCommands(CLI::App& app) {
       ->check(WholeBetween(3, 1000))
       ->capture_default_str();
   calibrate->add_option("--seed", cal_flags->seed, "seed of poses, UWB noise and hidden frame")
+      ->check(SeedNumber())
       ->capture_default_str();
   calibrate->add_option("--dim", cal_flags->dimension, "2d (planar) or 3d fit")
       ->capture_default_str();
   calibrate->add_option("--threshold", cal_flags->threshold_m, "pass if RMSE is at most this (m)")
-      ->check(PositiveNumber())
+      ->check(PositiveNumberUpTo(1.0))
       ->capture_default_str();
   calibrate->add_option("--out", cal_flags->out, "save the calibration (JSON) here");
   AddForceFlag(*calibrate, cal_flags->force);
@@ -171,20 +173,22 @@ void AddCellCommands(CLI::App& app) {
   calibrate->add_option("--beacon", device.beacon, "the beacon that carries the tag, by name");
   calibrate->add_option("--mode", device.mode, "DWM1001 mode: lec or tlv")->capture_default_str();
   calibrate->add_option("--beacon-tag-id", device.beacon_tag_id, "the beacon's AprilTag id")
+      ->check(WholeBetween(0, 586))  // tag36h11
       ->capture_default_str();
   calibrate
       ->add_option("--beacon-tag-size", device.beacon_tag_size_m, "its black border's side (m)")
-      ->check(PositiveNumber())
+      ->check(PositiveNumberUpTo(1.0))
       ->capture_default_str();
   calibrate
       ->add_option("--beacon-tag-height", device.beacon_tag_height_m,
                    "its face's height over the table (m)")
+      ->check(NumberBetween(0, 2.0))
       ->capture_default_str();
   calibrate->add_option("--frames", device.frames, "camera frames averaged per pose")
-      ->check(PositiveWhole())
+      ->check(WholeBetween(1, 1000))
       ->capture_default_str();
   calibrate->add_option("--uwb-samples", device.uwb_samples, "beacon positions averaged per pose")
-      ->check(PositiveWhole())
+      ->check(WholeBetween(1, 100000))
       ->capture_default_str();
   calibrate->add_flag("--no-wait", device.no_wait,
                       "do not wait for Enter between poses (the beacon is moved by a script)");

@@ -76,7 +76,7 @@ void AddDevicesCommand(CLI::App& app) {
   list->add_option("--serial-timeout-ms", flags->options.serial_timeout_ms,
                    "how long a serial port may take to answer")
       ->capture_default_str()
-      ->check(PositiveWhole());
+      ->check(WholeBetween(1, 600000));
   list->add_flag("--json", flags->json, "a JSON document instead of a table");
   list->callback([flags] { RunList(*flags); });
 }

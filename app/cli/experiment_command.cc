@@ -68,6 +68,7 @@ struct ExperimentFlags {
   double feature_noise = 0.0;  ///< only when --feature-noise was given
   double feature_gate = 0.0;   ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
+  std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
   int action_chunk = -1;            ///< -1: the world's recipe
   std::string ensemble;             ///< "all" | "gripper"; empty: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
@@ -104,16 +105,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
           flags.observation + "'");
     }
     config.cell.layout = worlds::ChooseLayout(flags.world, flags.layout, "--layout");
-    if (!std::isfinite(flags.beacon_noise) || flags.beacon_noise < 0 ||
-        flags.beacon_noise > worlds::Tabletop::kMaxBeaconNoise_m) {
-      throw UserError("--noise must be between 0 and " +
-                      FormatNumber(worlds::Tabletop::kMaxBeaconNoise_m) + " m (got " +
-                      FormatNumber(flags.beacon_noise) + ")");
-    }
     for (experiments::Condition& c : config.conditions) {
       if (c.placement != "none") c.noise_sigma = flags.beacon_noise;
     }
-    // Given values (even absurd ones, which ValidateExperimentConfig refuses by name) win.
+    // Given values win (their option's check has refused absurd ones).
     config.demo_noise =
         given("--demo-noise") ? flags.demo_noise : worlds::DefaultDemoNoise(flags.world);
   }
@@ -169,6 +164,13 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   } else if (flags.no_feature_gate) {
     config.network.feature_gate_hidden.clear();
     config.train.gate_margin = 0.0;
+  }
+  config.train.gate_target = recipe.train.gate_target;
+  if (!flags.gate_target.empty()) {
+    if (!config.network.has_feature_gate()) {
+      throw UserError("--gate-target: there is no feature gate to train (add --feature-gate M)");
+    }
+    config.train.gate_target = learn::ParseGateTarget(flags.gate_target);
   }
   if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
     config.train.random_shift_px = 0;  // vector observations have no pixels to shift
@@ -289,11 +291,14 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
         ->add_option("--noise", flags->noise,
                      "beacon noise sigmas for extra Exact conditions (default with no "
                      "--conditions: 2.5,4.5,6.5)")
-        ->delimiter(',');
+        ->delimiter(',')
+        ->check(PositiveNumberUpTo(kMaxDynamicNoise));
     command->add_flag("--authors-compat", flags->authors_compat,
                       "reproduce the authors' two slips (docs/worlds.md)");
   }
-  command->add_option("--seed", flags->seed, "master seed")->capture_default_str();
+  command->add_option("--seed", flags->seed, "master seed")
+      ->check(SeedNumber())
+      ->capture_default_str();
   command->add_option("--out", flags->out, "output folder (default out/<world>-<time>)");
   command->add_flag("--force", flags->force, "replace the results already in --out");
   command->add_option("--jobs", flags->jobs, "runs trained in parallel (default: cores)")
@@ -357,10 +362,19 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
       command
           ->add_option("--feature-gate", flags->feature_gate,
                        "a gate on the robot state that shuts the features out of the policy "
-                       "where they do not help, trained with this penalty on its mean (0-" +
+                       "where they do not help; the value is the margin of its targets (see "
+                       "--gate-target; 0-" +
                            FormatNumber(learn::kMaxGateMargin) + "; default: the world's recipe)")
           ->check(NumberBetween(0, learn::kMaxGateMargin));
   command->add_flag("--no-feature-gate", flags->no_feature_gate, "no feature gate")->excludes(gate);
+  command
+      ->add_option("--gate-target", flags->gate_target,
+                   "where the feature gate learns to open: loss (where seeing lowers the action "
+                   "loss by more than the margin, nats per action) or disagreement (where another "
+                   "demonstration's teacher acted otherwise at the nearest state by more than the "
+                   "margin, mean squared standardised difference per action); default: the "
+                   "world's recipe")
+      ->check(CLI::IsMember({"loss", "disagreement"}));
   command
       ->add_option("--action-chunk", flags->action_chunk,
                    "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
@@ -392,10 +406,13 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
     command
         ->add_option("--noise", flags->beacon_noise,
                      "beacon noise sigma per axis, metres (default: a DWM1001's; 0 = exact)")
+        ->check(NumberBetween(0, worlds::Tabletop::kMaxBeaconNoise_m))
         ->capture_default_str();
-    command->add_option("--demo-noise", flags->demo_noise,
-                        "noise injected into the executed joint velocities while demonstrating "
-                        "(DART), rad/s; 0 = off (default: 0.05)");
+    command
+        ->add_option("--demo-noise", flags->demo_noise,
+                     "noise injected into the executed joint velocities while demonstrating "
+                     "(DART), rad/s; 0 = off (default: 0.05)")
+        ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
     command
         ->add_option("--observation", flags->observation,
                      "image (the camera) or state (the objects' true positions: a diagnostic of "

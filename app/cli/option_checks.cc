@@ -24,17 +24,12 @@ CLI::Validator Make(double min, double max, bool whole, bool min_exclusive) {
 long long ParallelismLimit() { return 4LL * std::max(1u, std::thread::hardware_concurrency()); }
 
 CLI::Validator NumberBetween(double min, double max) { return Make(min, max, false, false); }
-CLI::Validator PositiveNumber() {
-  return Make(0, std::numeric_limits<double>::infinity(), false, true);
-}
 CLI::Validator PositiveNumberUpTo(double max) { return Make(0, max, false, true); }
-CLI::Validator NonNegativeNumber() {
-  return Make(0, std::numeric_limits<double>::infinity(), false, false);
-}
 CLI::Validator WholeBetween(long long min, long long max) {
   return Make(static_cast<double>(min), static_cast<double>(max), true, false);
 }
 CLI::Validator PositiveWhole() { return WholeBetween(1, kIntMax); }
 CLI::Validator NonNegativeWhole() { return WholeBetween(0, kIntMax); }
+CLI::Validator SeedNumber() { return WholeBetween(0, kMaxSeed); }
 
 }  // namespace recon::cli

@@ -17,18 +17,18 @@ namespace recon::cli {
 
 /// A finite number from `min` to `max` inclusive.
 CLI::Validator NumberBetween(double min, double max);
-/// A finite number > 0.
-CLI::Validator PositiveNumber();
-/// A number > 0 and at most `max`.
+/// A number > 0 and at most `max`. (There is no unbounded check: every number a person types
+/// has a largest sensible value, and a typo beyond it is refused rather than run.)
 CLI::Validator PositiveNumberUpTo(double max);
-/// A finite number >= 0.
-CLI::Validator NonNegativeNumber();
 /// A whole number from `min` to `max` inclusive (an int option: at most 2147483647).
 CLI::Validator WholeBetween(long long min, long long max);
 /// A whole number from 1 to 2147483647 (a positive int option).
 CLI::Validator PositiveWhole();
 /// A whole number from 0 to 2147483647 (a non-negative int option).
 CLI::Validator NonNegativeWhole();
+/// A seed: a whole number from 0 to kMaxSeed. Without it a uint64 option reads "-1" as
+/// 18446744073709551615 and runs.
+CLI::Validator SeedNumber();
 
 /// Upper bounds of the counts and sizes the commands take: far above any real use, low enough that
 /// a typo (an extra zero or three) is refused in a second instead of running out of memory or
@@ -43,6 +43,13 @@ constexpr long long kMaxFeatureDim = 1024;
 constexpr double kMaxLearningRate = 10.0;  ///< Adam diverges far below this
 constexpr double kMaxTermWeight = 1000.0;  ///< a loss term's weight
 constexpr long long kMaxImageSide = 8192;  ///< a rendered image's width or height (EGL limits)
+/// 2^53: every seed up to it is exact in a double, so it reads back the same from any JSON
+/// reader (results.csv and summary.json carry the seeds).
+constexpr long long kMaxSeed = 9007199254740992LL;
+constexpr double kMaxDemoNoise_rad_s = 1.0;  ///< DART noise on the executed joint velocities
+/// A Dynamic 2D beacon's noise sigma (world units; the paper's are 2.5 to 6.5).
+constexpr double kMaxDynamicNoise = 100.0;
+constexpr double kMaxWaitSeconds = 7 * 24 * 3600.0;  ///< how long a command may be asked to run
 
 /// The most threads or parallel jobs an option may ask for: 4 per core (at least 4).
 long long ParallelismLimit();

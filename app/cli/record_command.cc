@@ -197,6 +197,7 @@ void AddRecordCommand(CLI::App& app) {
       ->add_option("--seed", flags->seed,
                    "scenario seeds of new episodes derive from this and their numbers "
                    "(default: the session's)")
+      ->check(SeedNumber())
       ->capture_default_str();
   record->add_option("--image-size", flags->image_size, "camera images are N x N (tabletop)")
       ->check(WholeBetween(16, 480))
@@ -211,7 +212,7 @@ void AddRecordCommand(CLI::App& app) {
                    "noise injected into the executed joint velocities while demonstrating, for a "
                    "new session (DART; rad/s; 0 = off; default: 0.05 on the tabletop, 0 "
                    "elsewhere)")
-      ->check(NumberBetween(0, 1));
+      ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
   record->add_option("--layout", flags->layout,
                      "scene layout of a new tabletop session: paper (default: the plate at one "
                      "of two places, 2 demonstrations per configuration) or wide");

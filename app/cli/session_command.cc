@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/output_path.h"
 #include "app/cli/session_repair.h"
 #include "app/cli/session_summary.h"
@@ -182,8 +183,11 @@ void AddSessionCommands(CLI::App& app) {
       add("split", "draw train/validation masks over the demonstrations", RunSplit);
   split->add_option("dir", split_flags->dir, "session folder")->required();
   split->add_option("--valid", split_flags->valid_fraction, "fraction for validation")
+      ->check(NumberBetween(0, 0.95))
       ->capture_default_str();
-  split->add_option("--seed", split_flags->seed, "seed of the draw")->capture_default_str();
+  split->add_option("--seed", split_flags->seed, "seed of the draw")
+      ->check(SeedNumber())
+      ->capture_default_str();
 
   auto [exp, exp_flags] = add("export", "write one robomimic HDF5 file", RunExport);
   exp->add_option("dir", exp_flags->dir, "session folder")->required();

@@ -72,11 +72,13 @@ void AddSessionRepairCommand(CLI::App& session) {
   repair->add_option("--image-size", flags->options.image_size, "its camera images' N (N x N)")
       ->check(WholeBetween(16, 480))
       ->capture_default_str();
-  repair->add_option("--seed", flags->options.seed, "its scenario seed")->capture_default_str();
+  repair->add_option("--seed", flags->options.seed, "its scenario seed")
+      ->check(SeedNumber())
+      ->capture_default_str();
   repair->add_option("--noise", flags->noise, "its beacon noise sigma per axis (m)")
       ->check(NumberBetween(0, 0.5));
   repair->add_option("--demo-noise", flags->demo_noise, "its injected demonstration noise (rad/s)")
-      ->check(NumberBetween(0, 1));
+      ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
   repair->callback([flags, repair] { RunRepair(*flags, *repair); });
 }
 

@@ -181,7 +181,8 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   train->add_option("--loss", flags->loss, "nll (paper) or mse-sample (authors' code)")
       ->capture_default_str();
-  train->add_option("--seed", flags->seed, "training seed (default: derived from the session's)");
+  train->add_option("--seed", flags->seed, "training seed (default: derived from the session's)")
+      ->check(SeedNumber());
   train->add_flag("--no-play", flags->no_play, "train RECON without the session's play data");
   train->add_flag("--include-bad", flags->include_bad, "also train on demonstrations marked bad");
   train->callback([flags, &global] { RunTrain(*flags, global); });
@@ -196,7 +197,8 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
   eval->add_option("--tests", eval_flags->tests, "test scenarios")
       ->check(WholeBetween(1, kMaxTests))
       ->capture_default_str();
-  eval->add_option("--seed", eval_flags->seed, "test scenario seed (default: from the session's)");
+  eval->add_option("--seed", eval_flags->seed, "test scenario seed (default: from the session's)")
+      ->check(SeedNumber());
   eval->callback([eval_flags] { RunEval(*eval_flags); });
 }
 

@@ -197,7 +197,7 @@ void AddUwbCommand(CLI::App& app) {
                       "NODE_ID=NAME: name a tag by its node id (as `si` prints it), repeatable");
   monitor->add_option("--count", flags->count, "stop after N readings")->check(NonNegativeWhole());
   monitor->add_option("--seconds", flags->seconds, "stop after S seconds")
-      ->check(NonNegativeNumber());
+      ->check(NumberBetween(0, kMaxWaitSeconds));
   monitor->add_flag("--json", flags->json,
                     "one JSON object per reading (t, id, beacon, port, x, y, z, qf, anchors), "
                     "then the counts of each port");

@@ -136,6 +136,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"random_shift_px", config.train.random_shift_px},
       {"feature_noise", config.train.feature_noise},
       {"gate_margin", config.train.gate_margin},
+      {"gate_target", learn::ToString(config.train.gate_target)},
       {"play_per_scenario", config.play_per_scenario}};
   json network = {{"feature_dim", config.network.feature_dim},
                   {"policy_hidden", config.network.policy_hidden},

@@ -23,11 +23,21 @@ Backend ParseBackend(const std::string& name) {
   throw UserError("unknown backend '" + name + "' (expected fused or torch)");
 }
 
+GateTarget ParseGateTarget(const std::string& name) {
+  if (name == "loss") return GateTarget::kLoss;
+  if (name == "disagreement") return GateTarget::kDisagreement;
+  throw UserError("unknown gate target '" + name + "' (expected loss or disagreement)");
+}
+
 std::string ToString(Method method) { return method == Method::kRecon ? "recon" : "baseline"; }
 
 std::string ToString(LossKind loss) { return loss == LossKind::kNll ? "nll" : "mse-sample"; }
 
 std::string ToString(Backend backend) { return backend == Backend::kFused ? "fused" : "torch"; }
+
+std::string ToString(GateTarget target) {
+  return target == GateTarget::kLoss ? "loss" : "disagreement";
+}
 
 TrainConfig AuthorsRecipe() {
   TrainConfig config;

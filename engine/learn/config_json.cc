@@ -62,6 +62,7 @@ std::string ToJson(const TrainConfig& t) {
   j["random_shift_px"] = t.random_shift_px;
   j["feature_noise"] = t.feature_noise;
   j["gate_margin"] = t.gate_margin;
+  j["gate_target"] = ToString(t.gate_target);
   j["standardize_inputs"] = t.standardize_inputs;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
@@ -130,6 +131,12 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
   if (j.contains("gate_margin")) Read(j, "gate_margin", t.gate_margin, what);
+  // ... and, before the choice existed, gated by the loss.
+  if (j.contains("gate_target")) {
+    std::string gate_target;
+    Read(j, "gate_target", gate_target, what);
+    t.gate_target = ParseGateTarget(gate_target);
+  }
   if (j.contains("standardize_inputs")) {
     Read(j, "standardize_inputs", t.standardize_inputs, what);
   }

@@ -38,12 +38,33 @@ enum class Backend {
   kTorch,
 };
 
-Method ParseMethod(const std::string& name);      ///< "recon" | "baseline"; UserError otherwise
-LossKind ParseLossKind(const std::string& name);  ///< "nll" | "mse-sample"; UserError otherwise
-Backend ParseBackend(const std::string& name);    ///< "fused" | "torch"; UserError otherwise
+/// What the feature gate (NetworkConfig::feature_gate_hidden) learns to predict per sample, i.e.
+/// where the camera is worth reading (TrainConfig::gate_margin sets the threshold).
+enum class GateTarget {
+  /// Where the seeing branch's action loss is lower than the blind branch's by more than the
+  /// margin (nats per action). On a few demonstrations it marks nearly every sample: seeing helps
+  /// memorise them.
+  kLoss,
+  /// Where the teacher did something else in another demonstration at the nearest state: the
+  /// largest, over the other demonstrations, of the squared difference per action between this
+  /// sample's chunk and the chunk at the other demonstration's nearest robot state, in units of
+  /// the actions' total variance (gate_targets.h), exceeds the margin. Fixed before training,
+  /// from the data alone (no beacons: the Baseline gets the same targets). Where every
+  /// demonstration agrees, the state alone says what to do, so the image cannot be needed there.
+  /// Each sample then trains only the branch its target picks (seeing where 1, blind where 0),
+  /// as if the features were masked where the gate shuts: a seeing branch trained on every
+  /// sample learns to read the features where they only help it memorise.
+  kDisagreement,
+};
+
+Method ParseMethod(const std::string& name);          ///< "recon" | "baseline"; UserError otherwise
+LossKind ParseLossKind(const std::string& name);      ///< "nll" | "mse-sample"; UserError otherwise
+Backend ParseBackend(const std::string& name);        ///< "fused" | "torch"; UserError otherwise
+GateTarget ParseGateTarget(const std::string& name);  ///< "loss" | "disagreement"; UserError
 std::string ToString(Method method);
 std::string ToString(LossKind loss);
 std::string ToString(Backend backend);
+std::string ToString(GateTarget target);
 
 /// Architecture. The defaults are the authors' networks for 3x32x32 images (REFERENCE.md 2).
 struct NetworkConfig {
@@ -155,6 +176,8 @@ struct TrainConfig {
   /// gate saturated shut everywhere within the first steps, before the seeing branch had
   /// learnt where it pays, and a saturated sigmoid has no gradient to reopen.
   double gate_margin = 0.0;
+  /// What the gate's targets mark (GateTarget); gate_margin is in its units.
+  GateTarget gate_target = GateTarget::kLoss;
 
   bool operator==(const TrainConfig& other) const = default;
 };

@@ -162,18 +162,23 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   const at::Tensor seeing = s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1));
   const double chunk = static_cast<double>(s.arch.network.action_chunk);
   const at::Tensor seeing_loss = SampleLoss(kind, seeing, target_u, batch.noise_u);
-  const at::Tensor action = seeing_loss.mean() / chunk;
+  // Fixed gate targets route each sample to one branch (GatedActionLoss, trainer_step.cc).
+  const bool routed = s.arch.has_gate() && batch.gate_target != nullptr;
+  const at::Tensor route = routed ? Wrap(batch.gate_target, {n}) : at::ones({n});
+  const at::Tensor action = (route * seeing_loss).mean() / chunk;
   at::Tensor total = action * s.train.action_weight;
   metrics.action_loss = action.item<float>();
   if (s.arch.has_gate()) {
-    // As GatedActionLoss (trainer_step.cc): the blind branch on every sample, and the gate's
-    // cross-entropy against where seeing lowers the loss by more than the margin.
+    // As GatedActionLoss (trainer_step.cc): the blind branch (on every sample, or where the
+    // route says), and the gate's cross-entropy against its targets.
     const at::Tensor logit = s.Mlp(s.arch.gate, params, x).squeeze(1);
     const at::Tensor blind =
         s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
-    const at::Tensor blind_loss = SampleLoss(kind, blind, target_u, batch.noise_u);
+    const at::Tensor blind_route = routed ? 1.0f - route : at::ones({n});
+    const at::Tensor blind_loss = blind_route * SampleLoss(kind, blind, target_u, batch.noise_u);
     const at::Tensor target =
-        ((blind_loss - seeing_loss).detach() / chunk > s.train.gate_margin).to(at::kFloat);
+        routed ? route
+               : ((blind_loss - seeing_loss).detach() / chunk > s.train.gate_margin).to(at::kFloat);
     const at::Tensor gate_loss = at::binary_cross_entropy_with_logits(logit, target);
     const at::Tensor blind_action = blind_loss.mean() / chunk;
     total = total + blind_action * s.train.action_weight + gate_loss;

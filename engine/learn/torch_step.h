@@ -26,6 +26,8 @@ struct TorchBatch {
   const float* noise_b = nullptr;
   const float* noise_play = nullptr;
   const float* feature_noise = nullptr;  ///< [batch][k] draws; null when feature noise is off
+  /// [batch] fixed gate targets (GateTarget::kDisagreement); null = targets from the losses
+  const float* gate_target = nullptr;
 };
 
 class TorchStep {

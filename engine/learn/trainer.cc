@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/learn/augmentation.h"
+#include "engine/learn/gate_targets.h"
 #include "engine/learn/kernels.h"
 #include "engine/learn/losses.h"
 #include "engine/learn/policy_impl.h"
@@ -74,7 +75,13 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     feature_noise_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
     phi_offsets_.assign(feature_noise_.size(), 0.0f);
   }
-  if (arch_.has_gate()) grad_blind_head_.assign(grad_policy_head_.size(), 0.0f);
+  if (arch_.has_gate()) {
+    grad_blind_head_.assign(grad_policy_head_.size(), 0.0f);
+    if (train.gate_target == GateTarget::kDisagreement) {
+      row_gate_targets_ = DisagreementGateTargets(data_, scaling_.u_scale, train.gate_margin);
+      batch_gate_targets_.assign(static_cast<size_t>(batch), 0.0f);
+    }
+  }
   if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
   StartAttempt(0);
 }
@@ -107,6 +114,7 @@ void TrainerImpl::GatherBatch() {
     CopyRow(data_.demo_u, row, arch_.action_width(), target_u_.data() + i * arch_.action_width());
     if (beacons) CopyRow(data_.demo_b, row, s.b_dim, target_b_.data() + i * s.b_dim);
     demo_.y[i] = data_.DemoY(row);
+    if (!row_gate_targets_.empty()) batch_gate_targets_[i] = row_gate_targets_[row];
   }
   if (UsesPlay()) {
     for (int i = 0; i < play_.batch; ++i) {

@@ -102,8 +102,11 @@ class TrainerImpl {
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
   std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
   std::vector<float> grad_blind_head_;              ///< the feature gate's blind branch
-  AlignedFloats shifted_demo_y_, shifted_play_y_;   ///< the batch's augmented images
-  std::unique_ptr<TorchStep> torch_;                ///< Backend::kTorch only
+  /// GateTarget::kDisagreement: each demonstration row's gate target (fixed before training),
+  /// and the batch's. Empty otherwise.
+  std::vector<float> row_gate_targets_, batch_gate_targets_;
+  AlignedFloats shifted_demo_y_, shifted_play_y_;  ///< the batch's augmented images
+  std::unique_ptr<TorchStep> torch_;               ///< Backend::kTorch only
 };
 
 }  // namespace recon::learn

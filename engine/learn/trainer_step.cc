@@ -49,26 +49,33 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
 }
 
 // The feature gate's terms (NetworkConfig::feature_gate_hidden): both branches' action losses on
-// every sample, and the gate's cross-entropy against "seeing lowers this sample's loss by more
-// than gate_margin per action". Returns the seeing branch's action term; the blind branch's and
-// the gate's go to `m`.
+// every sample, and the gate's cross-entropy against its targets (GateTarget): "seeing lowers
+// this sample's loss by more than gate_margin per action", or the rows' fixed disagreement ones.
+// Returns the seeing branch's action term; the blind branch's and the gate's go to `m`.
 float TrainerImpl::GatedActionLoss(StepMetrics& m) {
   const int batch = train_.batch_size, width = arch_.action_width();
   const float chunk = static_cast<float>(network_.action_chunk);
   const float weight = static_cast<float>(train_.action_weight) / chunk / static_cast<float>(batch);
   const float* z = demo_.gate.output();
   double seeing_sum = 0, blind_sum = 0, gate_loss = 0, gate_sum = 0;
+  // Fixed targets (GateTarget::kDisagreement) also route each sample's action loss to the branch
+  // its target picks, as if the features were masked wherever the gate should shut: a seeing
+  // branch trained on every sample learns to read the features where they only help memorise.
+  const bool routed = !batch_gate_targets_.empty();
   for (int b = 0; b < batch; ++b) {
     const size_t head = static_cast<size_t>(b) * 2 * width, row = static_cast<size_t>(b) * width;
+    const float route = routed ? batch_gate_targets_[b] : 1.0f;
     const float seeing =
         HeadLoss(train_.loss, demo_.seeing_head() + head, target_u_.data() + row,
-                 noise_u_.data() + row, 1, width, weight, grad_policy_head_.data() + head);
-    const float blind =
-        HeadLoss(train_.loss, demo_.blind_head() + head, target_u_.data() + row,
-                 noise_u_.data() + row, 1, width, weight, grad_blind_head_.data() + head);
-    seeing_sum += seeing;
-    blind_sum += blind;
-    const float target = (blind - seeing) / chunk > train_.gate_margin ? 1.0f : 0.0f;
+                 noise_u_.data() + row, 1, width, weight * route, grad_policy_head_.data() + head);
+    const float blind_route = routed ? 1.0f - route : 1.0f;
+    const float blind = HeadLoss(train_.loss, demo_.blind_head() + head, target_u_.data() + row,
+                                 noise_u_.data() + row, 1, width, weight * blind_route,
+                                 grad_blind_head_.data() + head);
+    seeing_sum += route * seeing;
+    blind_sum += blind_route * blind;
+    const float target =
+        routed ? route : ((blind - seeing) / chunk > train_.gate_margin ? 1.0f : 0.0f);
     // Cross-entropy from the logit z: softplus(z) - t z, whose slope is sigmoid(z) - t.
     const double zb = z[b];
     gate_loss += std::max(zb, 0.0) + std::log1p(std::exp(-std::abs(zb))) - target * zb;
@@ -102,6 +109,7 @@ TorchBatch TrainerImpl::MakeTorchBatch() const {
   b.noise_b = noise_b_.data();
   b.noise_play = noise_play_.data();
   b.feature_noise = train_.feature_noise > 0 ? feature_noise_.data() : nullptr;
+  b.gate_target = batch_gate_targets_.empty() ? nullptr : batch_gate_targets_.data();
   return b;
 }
 

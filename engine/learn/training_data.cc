@@ -29,8 +29,11 @@ TrainingData TrainingData::From(const Dataset& dataset, float image_scale, int a
   t.demo_y.reserve(t.num_demo * t.y_size);
   t.demo_b.reserve(t.num_demo * t.spec.b_dim);
   t.demo_u.reserve(t.num_demo * t.spec.u_dim * action_chunk);
-  for (const Episode& episode : dataset.demos) {
+  t.demo_episode.reserve(t.num_demo);
+  for (size_t e = 0; e < dataset.demos.size(); ++e) {
+    const Episode& episode = dataset.demos[e];
     const size_t length = episode.samples.size();
+    t.demo_episode.insert(t.demo_episode.end(), length, static_cast<int32_t>(e));
     for (size_t i = 0; i < length; ++i) {
       const Sample& s = episode.samples[i];
       Append(t.demo_x, s.x);

@@ -19,6 +19,7 @@ struct TrainingData {
   int64_t y_size = 0;
   int action_chunk = 1;
   std::vector<float> demo_x, demo_b, demo_u, play_x, play_b;  ///< demo_u: u_dim * action_chunk
+  std::vector<int32_t> demo_episode;  ///< per demonstration row, its episode's index
   AlignedFloats demo_y, play_y;
   uint64_t fingerprint = 0;  ///< Fingerprint() of the source dataset
 

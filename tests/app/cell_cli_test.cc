@@ -176,9 +176,9 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--demos 4,5",
        "--demos 5: the tabletop world records 2 demonstrations per scene "
        "configuration"},
-      {"--noise -0.1", "--noise must be between 0 and 0.5 m"},
+      {"--noise -0.1", "--noise: must be a number from 0 to 0.5"},
       {"--noise nan", "--noise"},
-      {"--demo-noise 3", "--demo-noise must be between 0 and 1"},
+      {"--demo-noise 3", "--demo-noise: must be a number from 0 to 1"},
       {"--observation depth", "--observation must be 'image'"},
       {"--random-shift 40", "--random-shift"},
       {"--action-chunk 0", "--action-chunk"},
@@ -190,6 +190,8 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--feature-gate -1", "--feature-gate: must be a number from 0 to 100"},
       {"--feature-gate 1 --no-feature-gate", "excludes"},
       {"--ensemble half", "--ensemble: half not in {all,gripper}"},
+      {"--feature-gate 1 --gate-target votes", "--gate-target: votes not in {loss,disagreement}"},
+      {"--gate-target disagreement", "--gate-target: there is no feature gate to train"},
   };
   for (const auto& c : cases) {
     const CommandResult r = RunRecon(std::string("experiment tabletop --runs 1 --tests 1 ") +

@@ -8,10 +8,14 @@
 #include <cctype>
 #include <filesystem>
 #include <limits>
+#include <ostream>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/cli/option_checks.h"
+#include "app/cli/recon_app.h"
 #include "tests/app/run_recon.h"
 
 namespace recon::cli {
@@ -48,47 +52,155 @@ struct OptionCase {
   bool whole;
 };
 
+// How ctest and gtest name a case: the command line it tries, not the struct's bytes.
+void PrintTo(const OptionCase& c, std::ostream* os) { *os << c.command << c.option; }
+
 fs::path OutDir() { return fs::path(::testing::TempDir()) / "recon_option_table"; }
 
-// A run would start with any valid value, so a bad one must stop it first.
+// A run would start with any valid value, so a bad one must stop it first. Each command is
+// valid on its own (or fails only later, at run time, on a missing file or device).
 std::vector<OptionCase> NumericOptions() {
   const fs::path out = OutDir();
-  const std::string exp = "experiment tabletop --out " + (out / "exp").string() + " ";
   const std::string train = "train --session " + (out / "missing").string() + " ";
+  const std::string eval = "eval --session " + (out / "missing").string() + " ";
   const std::string record = "record --world static2d --session " + (out / "rec").string() + " ";
   const std::string repair = "session repair " + (out / "rep").string() + " --world dynamic2d ";
-  return {
-      {exp, "--demos", true},
-      {exp, "--runs", true},
-      {exp, "--tests", true},
-      {exp, "--jobs", true},
-      {exp, "--steps", true},
-      {exp, "--baseline-steps", true},
-      {exp, "--batch", true},
-      {exp, "--play", true},
-      {exp, "--feature-dim", true},
-      {exp, "--random-shift", true},
-      {exp, "--action-chunk", true},
-      {exp, "--image-size", true},
-      {exp, "--lr", false},
-      {exp, "--beacon-weight", false},
-      {exp, "--play-weight", false},
-      {exp, "--feature-noise", false},
-      {exp, "--feature-gate", false},
+  const std::string split = "session split " + (out / "missing").string() + " ";
+  const std::string render = "render --out " + (out / "render.png").string() + " ";
+  const std::string calibrate = "calibrate --sim --out " + (out / "cal.json").string() + " ";
+  const std::string camera = (out / "no_camera").string();
+  const std::string info = "camera info --device " + camera + " ";
+  const std::string grab =
+      "camera grab --device " + camera + " --out " + (out / "grab.png").string() + " ";
+  const std::string pose = "camera pose --device " + camera + " --calibration " +
+                           (out / "c.yaml").string() + " --tags " + (out / "t.json").string() + " ";
+  const std::string robot = "robot status --host 127.0.0.1 ";
+  std::vector<OptionCase> cases;
+  for (const char* world : {"dynamic2d", "static2d", "bintransfer", "tabletop"}) {
+    const std::string exp =
+        std::string("experiment ") + world + " --out " + (out / "exp").string() + " ";
+    for (const char* option :
+         {"--demos", "--runs", "--tests", "--jobs", "--steps", "--baseline-steps", "--batch",
+          "--play", "--feature-dim", "--random-shift", "--action-chunk", "--seed"}) {
+      cases.push_back({exp, option, true});
+    }
+    for (const char* option :
+         {"--lr", "--beacon-weight", "--play-weight", "--feature-noise", "--feature-gate"}) {
+      cases.push_back({exp, option, false});
+    }
+  }
+  const std::string dynamic = "experiment dynamic2d --out " + (out / "exp").string() + " ";
+  const std::string tabletop = "experiment tabletop --out " + (out / "exp").string() + " ";
+  std::vector<OptionCase> rest = {
+      {dynamic, "--noise", false},
+      {tabletop, "--image-size", true},
+      {tabletop, "--noise", false},
+      {tabletop, "--demo-noise", false},
       {train, "--steps", true},
       {train, "--batch", true},
       {train, "--lr", false},
       {train, "--feature-dim", true},
+      {train, "--seed", true},
+      {eval, "--tests", true},
+      {eval, "--seed", true},
       {record, "--demos", true},
       {record, "--play", true},
       {record, "--noise", false},
       {record, "--demo-noise", false},
       {record, "--image-size", true},
+      {record, "--seed", true},
       {repair, "--noise", false},
       {repair, "--demo-noise", false},
       {repair, "--image-size", true},
+      {repair, "--seed", true},
+      {split, "--valid", false},
+      {split, "--seed", true},
+      {render, "--width", true},
+      {render, "--height", true},
+      {render, "--seed", true},
+      {calibrate, "--points", true},
+      {calibrate, "--seed", true},
+      {calibrate, "--threshold", false},
+      {calibrate, "--beacon-tag-id", true},
+      {calibrate, "--beacon-tag-size", false},
+      {calibrate, "--beacon-tag-height", false},
+      {calibrate, "--frames", true},
+      {calibrate, "--uwb-samples", true},
+      {info, "--frames", true},
+      {grab, "--count", true},
+      {pose, "--min-tags", true},
+      {robot, "--rtde-port", true},
+      {robot, "--script-port", true},
+      {robot, "--seconds", false},
+      {"devices list ", "--serial-timeout-ms", true},
+      {"uwb monitor ", "--count", true},
+      {"uwb monitor ", "--fake", true},
+      {"uwb monitor ", "--seconds", false},
       {"--threads", "", true},
   };
+  cases.insert(cases.end(), rest.begin(), rest.end());
+  return cases;
+}
+
+// "experiment tabletop" from "experiment tabletop --out ... ": the subcommands before the flags.
+std::string CommandPath(const std::string& command) {
+  std::string path;
+  size_t at = 0;
+  while (at < command.size()) {
+    const size_t end = std::min(command.find(' ', at), command.size());
+    const std::string word = command.substr(at, end - at);
+    if (word.empty() || word[0] == '-' || word.find('/') != std::string::npos) break;
+    path += (path.empty() ? "" : " ") + word;
+    at = end + 1;
+  }
+  return path;
+}
+
+// Every option of `app` and its subcommands that takes a number, as (subcommand path, name).
+void CollectNumericOptions(const CLI::App& app, const std::string& path,
+                           std::set<std::pair<std::string, std::string>>& out,
+                           std::vector<std::string>& unchecked) {
+  for (const CLI::Option* option : app.get_options()) {
+    if (option->get_items_expected_max() == 0) continue;  // a flag
+    const std::string type = option->get_type_name();
+    const bool numeric = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 ||
+                         type.rfind("FLOAT", 0) == 0 || type.rfind("NUMBER", 0) == 0;
+    if (!numeric) continue;
+    out.insert({path, option->get_name()});
+    try {
+      const_cast<CLI::Option*>(option)->get_validator();
+    } catch (const CLI::OptionNotFound&) {
+      unchecked.push_back(path + " " + option->get_name());
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    CollectNumericOptions(*sub, path.empty() ? sub->get_name() : path + " " + sub->get_name(), out,
+                          unchecked);
+  }
+}
+
+// The table below must hold every numeric option `recon` has, so that a new option cannot
+// skip the hostile values: the test walks the real command line (recon_app.h).
+TEST(OptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {
+  CLI::App app;
+  GlobalOptions global;
+  BuildReconApp(app, global);
+  std::set<std::pair<std::string, std::string>> numeric;
+  std::vector<std::string> unchecked;
+  CollectNumericOptions(app, "", numeric, unchecked);
+  EXPECT_GT(numeric.size(), 40u) << "the walk found too few options to be a walk of recon";
+  EXPECT_TRUE(unchecked.empty()) << "numeric options without a range check: "
+                                 << ::testing::PrintToString(unchecked);
+  std::set<std::pair<std::string, std::string>> table;
+  for (const OptionCase& c : NumericOptions()) {
+    table.insert(c.option.empty()
+                     ? std::pair<std::string, std::string>{"", c.command}
+                     : std::pair<std::string, std::string>{CommandPath(c.command), c.option});
+  }
+  for (const auto& [path, name] : numeric) {
+    EXPECT_TRUE(table.count({path, name}) > 0)
+        << "'recon " << path << " " << name << "' takes a number but is not in NumericOptions()";
+  }
 }
 
 class OptionTableTest : public ::testing::TestWithParam<OptionCase> {};
@@ -111,14 +223,16 @@ TEST_P(OptionTableTest, RefusesNanInfinityHugeNegativeAndText) {
     EXPECT_THAT(r.output, Not(HasSubstr("e+308"))) << args;
   }
   // Nothing ran, so nothing was written.
-  for (const char* written : {"exp", "missing", "rec", "rep"}) {
+  for (const char* written :
+       {"exp", "missing", "rec", "rep", "render.png", "cal.json", "grab.png"}) {
     EXPECT_FALSE(fs::exists(OutDir() / written)) << written;
   }
 }
 
 std::string CaseName(const ::testing::TestParamInfo<OptionCase>& info) {
-  std::string name = info.param.command.substr(0, info.param.command.find(' ')) +
-                     (info.param.option.empty() ? "" : "_" + info.param.option);
+  std::string name = info.param.option.empty()
+                         ? info.param.command
+                         : CommandPath(info.param.command) + "_" + info.param.option;
   for (char& ch : name) {
     if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
   }

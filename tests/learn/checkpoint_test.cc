@@ -172,36 +172,52 @@ TEST(CheckpointTest, SpatialSoftmaxModelSavesLoadsAndResumesExactly) {
 }
 
 TEST(CheckpointTest, FeatureGateModelSavesLoadsAndResumesExactly) {
-  const Dataset data = MakeImageTask(9, 24, 16, 6);
-  NetworkConfig network = SmallImageNet();
-  network.feature_gate_hidden = {6};
-  TrainConfig train = ShortAuthors(30);
-  train.gate_margin = 0.5;
-  Trainer straight(data, network, train);
-  straight.Train();
-  const std::string path = TempPath("gate.ckpt");
-  straight.SaveCheckpoint(path);
-  EXPECT_EQ(NetworkConfigFromJson(ReadCheckpointString(path, "network")).feature_gate_hidden,
-            std::vector<int>{6});
-  EXPECT_DOUBLE_EQ(TrainConfigFromJson(ReadCheckpointString(path, "train")).gate_margin, 0.5);
-  EXPECT_TRUE(BitwiseEqual(Probe(LoadPolicy(path), data), Probe(straight.policy(), data)));
+  for (GateTarget target : {GateTarget::kLoss, GateTarget::kDisagreement}) {
+    SCOPED_TRACE(ToString(target));
+    const Dataset data = MakeImageTask(9, 24, 16, 6);
+    NetworkConfig network = SmallImageNet();
+    network.feature_gate_hidden = {6};
+    TrainConfig train = ShortAuthors(30);
+    train.gate_margin = 0.5;
+    train.gate_target = target;
+    Trainer straight(data, network, train);
+    straight.Train();
+    const std::string path = TempPath("gate.ckpt");
+    straight.SaveCheckpoint(path);
+    EXPECT_EQ(NetworkConfigFromJson(ReadCheckpointString(path, "network")).feature_gate_hidden,
+              std::vector<int>{6});
+    const TrainConfig stored = TrainConfigFromJson(ReadCheckpointString(path, "train"));
+    EXPECT_DOUBLE_EQ(stored.gate_margin, 0.5);
+    EXPECT_EQ(stored.gate_target, target);
+    EXPECT_TRUE(BitwiseEqual(Probe(LoadPolicy(path), data), Probe(straight.policy(), data)));
 
-  Trainer first_half(data, network, train);
-  std::atomic<bool> cancel{false};
-  first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step + 1 == 15; });
-  ASSERT_TRUE(first_half.Train(&cancel).cancelled);
-  const std::string half_path = TempPath("gate_half.ckpt");
-  first_half.SaveCheckpoint(half_path);
-  const std::unique_ptr<Trainer> resumed = Trainer::Resume(half_path, data);
-  resumed->Train();
-  const std::string resumed_path = TempPath("gate_resumed.ckpt");
-  resumed->SaveCheckpoint(resumed_path);
-  for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
-    EXPECT_TRUE(torch::equal(ReadTensor(path, key), ReadTensor(resumed_path, key))) << key;
+    Trainer first_half(data, network, train);
+    std::atomic<bool> cancel{false};
+    first_half.SetObserver([&](const StepMetrics& m) { cancel = m.step + 1 == 15; });
+    ASSERT_TRUE(first_half.Train(&cancel).cancelled);
+    const std::string half_path = TempPath("gate_half.ckpt");
+    first_half.SaveCheckpoint(half_path);
+    const std::unique_ptr<Trainer> resumed = Trainer::Resume(half_path, data);
+    resumed->Train();
+    const std::string resumed_path = TempPath("gate_resumed.ckpt");
+    resumed->SaveCheckpoint(resumed_path);
+    for (const char* key : {"params", "exp_avg", "exp_avg_sq"}) {
+      EXPECT_TRUE(torch::equal(ReadTensor(path, key), ReadTensor(resumed_path, key))) << key;
+    }
+    // The gate trained: its output bias moved from where it starts.
+    const Architecture arch = BuildArchitecture(data.spec, network, Method::kRecon);
+    EXPECT_NE(ReadTensor(path, "params")[arch.gate.back().bias].item<float>(), kGateInitialBias);
   }
-  // The gate trained: its output bias moved from where it starts.
-  const Architecture arch = BuildArchitecture(data.spec, network, Method::kRecon);
-  EXPECT_NE(ReadTensor(path, "params")[arch.gate.back().bias].item<float>(), kGateInitialBias);
+  // A checkpoint from before the choice existed gated by the loss.
+  std::string old = ToJson(TrainConfig{});
+  const size_t at = old.find(",\"gate_target\":\"loss\"");
+  ASSERT_NE(at, std::string::npos) << old;
+  old.erase(at, std::string(",\"gate_target\":\"loss\"").size());
+  EXPECT_EQ(TrainConfigFromJson(old).gate_target, GateTarget::kLoss);
+  std::string bad = ToJson(TrainConfig{});
+  bad.replace(bad.find("\"gate_target\":\"loss\""), 20, "\"gate_target\":\"vote\"");
+  EXPECT_THAT(UserErrorOf([&] { TrainConfigFromJson(bad); }),
+              HasSubstr("unknown gate target 'vote' (expected loss or disagreement)"));
 }
 
 TEST(CheckpointTest, ResumeRejectsOtherData) {

@@ -1,6 +1,6 @@
-// The feature gate (NetworkConfig::feature_gate_hidden): trained with its penalty, it shuts the
-// features out of the states where the teacher's action does not depend on them, and stays
-// open where it does.
+// The feature gate (NetworkConfig::feature_gate_hidden): trained against either kind of target
+// (GateTarget), it shuts the features out of the states where the teacher's action does not
+// depend on them, and stays open where it does.
 
 #include <gtest/gtest.h>
 
@@ -88,6 +88,46 @@ TEST(FeatureGateTest, AMarginAboveWhatTheFeaturesAreWorthShutsItEverywhere) {
   trainer.Train();
   EXPECT_LT(MeanGate(trainer.policy(), data, 1.0f), 0.2);
   EXPECT_LT(MeanGate(trainer.policy(), data, -1.0f), 0.2);
+}
+
+// Episodes in time, as demonstrations are: x = (phase, t), y = 6 numbers fixed for the episode
+// (the first two: where the plate is). In phase -1 (the first 10 steps) the action is a
+// function of t, the same in every episode; in phase +1 it heads for the plate.
+Dataset PlateTask(uint64_t seed) {
+  Rng rng(seed);
+  Dataset data;
+  data.spec = DataSpec{2, {6}, 0, 2};
+  for (int e = 0; e < 40; ++e) {
+    std::vector<float> y;
+    for (int i = 0; i < 6; ++i) y.push_back(static_cast<float>(rng.Uniform(-1, 1)));
+    Episode episode;
+    for (int t = 0; t < 20; ++t) {
+      Sample s;
+      const float phase = t < 10 ? -1.0f : 1.0f, time = 0.05f * static_cast<float>(t);
+      s.x = {phase, time};
+      s.y = y;
+      s.u = phase < 0 ? std::vector<float>{0.5f * time, -0.3f * time}
+                      : std::vector<float>{y[0], y[1]};
+      episode.samples.push_back(s);
+    }
+    data.demos.push_back(episode);
+  }
+  return data;
+}
+
+TEST(FeatureGateTest, TargetsByDisagreementShutItWhereEveryTeacherAgrees) {
+  // In phase -1 every episode does the same at the same state; in phase +1 the episodes'
+  // plates differ, by about 2 units of the actions' variance on average.
+  const Dataset data = PlateTask(1);
+  TrainConfig train = GateTraining(0.5);
+  train.gate_target = GateTarget::kDisagreement;
+  Trainer trainer(data, GatedNetwork(), train);
+  trainer.Train();
+  EXPECT_LT(MeanGate(trainer.policy(), data, -1.0f), 0.2);
+  EXPECT_GT(MeanGate(trainer.policy(), data, 1.0f), 0.8);
+  // Routed: where the gate shuts, the blind branch alone learnt the actions, and it does them.
+  const Sample& early = data.demos[3].samples[4];
+  EXPECT_NEAR(trainer.policy().Act(early.x, early.y)[0], early.u[0], 0.05);
 }
 
 TEST(FeatureGateTest, WithoutAGateThePolicyReadsEveryFeature) {

@@ -122,6 +122,11 @@ std::vector<Case> Cases() {
     c.train.feature_noise = image ? 0.3 : 0.0;
     c.train.gate_margin = 0.6;
     c.train.steps = 1000;
+    cases.push_back(c);
+    // Fixed targets by disagreement, each sample routed to one branch (GateTarget).
+    c.name += " disagreement";
+    c.train.gate_target = GateTarget::kDisagreement;
+    c.train.gate_margin = 0.3;
     cases.push_back(std::move(c));
   }
   return cases;

@@ -1,0 +1,123 @@
+#include "engine/learn/gate_targets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace recon::learn {
+
+namespace {
+
+// How many steps apart two demonstrations may do the same thing and still agree.
+constexpr int64_t kTimingTolerance_steps = 5;
+
+// Per-dimension 1 / standard deviation of the demonstration states (0 for constant dimensions,
+// which then do not count in the distance).
+std::vector<double> InverseSpread(const TrainingData& data) {
+  const int dim = data.spec.x_dim;
+  const int64_t rows = data.num_demo;
+  std::vector<double> mean(dim, 0.0), square(dim, 0.0), inverse(dim, 0.0);
+  for (int64_t r = 0; r < rows; ++r) {
+    for (int d = 0; d < dim; ++d) {
+      const double v = data.demo_x[r * dim + d];
+      mean[d] += v;
+      square[d] += v * v;
+    }
+  }
+  for (int d = 0; d < dim; ++d) {
+    const double m = mean[d] / static_cast<double>(rows);
+    const double variance = square[d] / static_cast<double>(rows) - m * m;
+    inverse[d] = variance > 1e-12 ? 1.0 / std::sqrt(variance) : 0.0;
+  }
+  return inverse;
+}
+
+}  // namespace
+
+std::vector<float> DemonstrationDisagreement(const TrainingData& data,
+                                             const std::vector<float>& action_scale) {
+  const int64_t rows = data.num_demo;
+  std::vector<float> out(static_cast<size_t>(rows), 0.0f);
+  if (rows == 0) return out;
+  const int dim = data.spec.x_dim;
+  const int64_t width = static_cast<int64_t>(data.spec.u_dim) * data.action_chunk;
+  const std::vector<double> inverse = InverseSpread(data);
+  // Each action dimension weighs by its units, not by its spread: differences in the user's
+  // units (stored * scale), over the actions' total variance in those units. Standardising each
+  // dimension instead would make a wrist joint that hardly moves weigh as much as the joint
+  // that carries the arm, and its small corrections look like disagreement.
+  const int u_dim = data.spec.u_dim;
+  std::vector<double> weight(u_dim, 0.0);
+  {
+    std::vector<double> mean(u_dim, 0.0), square(u_dim, 0.0);
+    for (int64_t r = 0; r < rows; ++r) {
+      for (int d = 0; d < u_dim; ++d) {
+        const double v = data.demo_u[r * width + d];  // the row's first action
+        mean[d] += v;
+        square[d] += v * v;
+      }
+    }
+    double total = 0;
+    for (int d = 0; d < u_dim; ++d) {
+      const double scale = action_scale.empty() ? 1.0 : action_scale[d];
+      const double m = mean[d] / static_cast<double>(rows);
+      total += std::max(square[d] / static_cast<double>(rows) - m * m, 0.0) * scale * scale;
+    }
+    for (int d = 0; d < u_dim; ++d) {
+      const double scale = action_scale.empty() ? 1.0 : action_scale[d];
+      weight[d] = total > 0 ? scale * scale / total : 0.0;
+    }
+  }
+  // Episode e's rows are contiguous: [begin[e], begin[e + 1]).
+  const int episodes = data.demo_episode.back() + 1;
+  std::vector<int64_t> begin(episodes + 1, rows);
+  for (int64_t r = rows - 1; r >= 0; --r) begin[data.demo_episode[r]] = r;
+  for (int e = episodes - 1; e >= 0; --e) begin[e] = std::min(begin[e], begin[e + 1]);
+  for (int64_t r = 0; r < rows; ++r) {
+    const float* x = data.demo_x.data() + r * dim;
+    const float* u = data.demo_u.data() + r * width;
+    float largest = 0.0f;
+    for (int e = 0; e < episodes; ++e) {
+      if (e == data.demo_episode[r] || begin[e] == begin[e + 1]) continue;
+      int64_t nearest = begin[e];
+      double nearest_distance = std::numeric_limits<double>::infinity();
+      for (int64_t q = begin[e]; q < begin[e + 1]; ++q) {
+        const float* y = data.demo_x.data() + q * dim;
+        double distance = 0;
+        for (int d = 0; d < dim; ++d) {
+          const double diff = (x[d] - y[d]) * inverse[d];
+          distance += diff * diff;
+        }
+        if (distance < nearest_distance) {
+          nearest_distance = distance;
+          nearest = q;
+        }
+      }
+      // The same actions a few steps earlier or later are agreement: timing is not what the
+      // camera tells (e.g. when the fingers close), so the best-matching row near the nearest one.
+      double closest = std::numeric_limits<double>::infinity();
+      const int64_t first = std::max(begin[e], nearest - kTimingTolerance_steps);
+      const int64_t last = std::min(begin[e + 1] - 1, nearest + kTimingTolerance_steps);
+      for (int64_t q = first; q <= last; ++q) {
+        const float* v = data.demo_u.data() + q * width;
+        double squared = 0;
+        for (int64_t i = 0; i < width; ++i) {
+          squared += weight[i % u_dim] * (u[i] - v[i]) * (u[i] - v[i]);
+        }
+        closest = std::min(closest, squared);
+      }
+      largest = std::max(largest, static_cast<float>(closest / data.action_chunk));
+    }
+    out[static_cast<size_t>(r)] = largest;
+  }
+  return out;
+}
+
+std::vector<float> DisagreementGateTargets(const TrainingData& data,
+                                           const std::vector<float>& action_scale, double margin) {
+  std::vector<float> targets = DemonstrationDisagreement(data, action_scale);
+  for (float& t : targets) t = t > margin ? 1.0f : 0.0f;
+  return targets;
+}
+
+}  // namespace recon::learn
