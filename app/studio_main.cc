@@ -10,9 +10,9 @@
 #include <optional>
 #include <sstream>
 
-#include "app/cli/option_checks.h"
 #include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
+#include "app/studio/studio_options.h"
 #include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
 #include "engine/report/image_png.h"
@@ -24,18 +24,7 @@
 
 namespace {
 
-struct StudioFlags {
-  recon::studio::StudioOptions options;
-  bool headless = false;
-  bool fast = false;
-  std::string script;
-  std::string screenshots;
-  std::string screenshot;
-  int frames = 60;
-  bool frames_given = false;  ///< --frames on the command line: a window closes after them too
-  int width = 1280;
-  int height = 800;
-};
+using recon::studio::StudioFlags;
 
 std::string ReadScript(const std::string& path) {
   std::ifstream in(path);
@@ -152,63 +141,7 @@ int main(int argc, char** argv) {
   recon::TuneMallocForTraining();
   CLI::App app{"recon-studio: teach a robot with human-placed beacons"};
   StudioFlags flags;
-  app.add_option("--session", flags.options.session_dir,
-                 "session folder (created if new); without, the studio starts at the session "
-                 "picker with the recent sessions");
-  app.add_option("--world", flags.options.world, "task of a new session")->capture_default_str();
-  app.add_option("--seed", flags.options.seed, "seed of a new session")
-      ->check(recon::cli::SeedNumber())
-      ->capture_default_str();
-  app.add_option("--layout", flags.options.layout,
-                 "scene layout of a new tabletop session: paper (the plate at one of two "
-                 "places, 2 demonstrations per configuration) or wide")
-      ->check(CLI::IsMember({"paper", "wide"}))
-      ->capture_default_str();
-  app.add_option("--noise", flags.options.beacon_noise_sigma,
-                 "beacon noise sigma per axis of a new simulated session, metres (default: a "
-                 "DWM1001's 0.07 on the tabletop)")
-      ->check(recon::cli::NumberBetween(0, 0.5));
-  app.add_option("--demo-noise", flags.options.demo_noise_sigma,
-                 "noise injected into the executed joint velocities while demonstrating in a new "
-                 "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")
-      ->check(recon::cli::NumberBetween(0, recon::cli::kMaxDemoNoise_rad_s));
-  app.add_flag("--headless", flags.headless, "render through EGL without a window");
-  app.add_option("--cell", flags.options.cell_profile,
-                 "teach with the real devices of this cell profile (JSON: camera, beacons, UR "
-                 "robot; docs/hardware.md) instead of the simulated cell")
-      ->check(CLI::ExistingFile);
-  app.add_option("--calibration", flags.options.calibration_file,
-                 "attach this calibration (recon calibrate --out) to the session")
-      ->check(CLI::ExistingFile);
-  app.add_option("--dev", flags.options.dev_dir,
-                 "device folder the Cell screen lists beacons, cameras and gamepads from")
-      ->capture_default_str();
-  app.add_option("--robot-host", flags.options.robot_hosts,
-                 "a UR controller the Cell screen lists (host or host:port; repeatable)");
-  app.add_flag("--fast", flags.fast,
-               "record demonstrations as fast as the simulation runs (default: 10 Hz, real time)");
-  app.add_option("--train-steps", flags.options.train_steps,
-                 "training steps per method (default: the world's recipe: 15000 on the "
-                 "tabletop)")
-      ->check(recon::cli::WholeBetween(1, recon::cli::kMaxSteps));
-  app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
-      ->check(recon::cli::WholeBetween(1, recon::cli::kMaxTests))
-      ->capture_default_str();
-  app.add_option("--script", flags.script,
-                 "play a script of inputs (click <label>, type, press, wait N, wait-idle, "
-                 "screenshot <file>)");
-  app.add_option("--screenshots", flags.screenshots, "folder for the script's screenshots");
-  app.add_option("--screenshot", flags.screenshot, "write the last frame here (PNG)");
-  CLI::Option* frames =
-      app.add_option("--frames", flags.frames,
-                     "frames to run without a script (a window: until closed, unless given)")
-          ->capture_default_str();
-  app.add_option("--width", flags.width, "window width")
-      ->check(recon::cli::WholeBetween(640, 8192))
-      ->capture_default_str();
-  app.add_option("--height", flags.height, "window height")
-      ->check(recon::cli::WholeBetween(480, 8192))
-      ->capture_default_str();
+  CLI::Option* frames = recon::studio::AddStudioOptions(app, flags);
   return recon::cli::RunMain(app, argc, argv, "recon-studio", [&] {
     flags.frames_given = frames->count() > 0;
     Run(flags);

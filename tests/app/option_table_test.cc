@@ -16,6 +16,7 @@
 
 #include "app/cli/option_checks.h"
 #include "app/cli/recon_app.h"
+#include "tests/app/option_walk.h"
 #include "tests/app/run_recon.h"
 
 namespace recon::cli {
@@ -156,29 +157,6 @@ std::string CommandPath(const std::string& command) {
   return path;
 }
 
-// Every option of `app` and its subcommands that takes a number, as (subcommand path, name).
-void CollectNumericOptions(const CLI::App& app, const std::string& path,
-                           std::set<std::pair<std::string, std::string>>& out,
-                           std::vector<std::string>& unchecked) {
-  for (const CLI::Option* option : app.get_options()) {
-    if (option->get_items_expected_max() == 0) continue;  // a flag
-    const std::string type = option->get_type_name();
-    const bool numeric = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 ||
-                         type.rfind("FLOAT", 0) == 0 || type.rfind("NUMBER", 0) == 0;
-    if (!numeric) continue;
-    out.insert({path, option->get_name()});
-    try {
-      const_cast<CLI::Option*>(option)->get_validator();
-    } catch (const CLI::OptionNotFound&) {
-      unchecked.push_back(path + " " + option->get_name());
-    }
-  }
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    CollectNumericOptions(*sub, path.empty() ? sub->get_name() : path + " " + sub->get_name(), out,
-                          unchecked);
-  }
-}
-
 // The table below must hold every numeric option `recon` has, so that a new option cannot
 // skip the hostile values: the test walks the real command line (recon_app.h).
 TEST(OptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {
@@ -187,7 +165,7 @@ TEST(OptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {
   BuildReconApp(app, global);
   std::set<std::pair<std::string, std::string>> numeric;
   std::vector<std::string> unchecked;
-  CollectNumericOptions(app, "", numeric, unchecked);
+  testing::CollectNumericOptions(app, "", numeric, unchecked);
   EXPECT_GT(numeric.size(), 40u) << "the walk found too few options to be a walk of recon";
   EXPECT_TRUE(unchecked.empty()) << "numeric options without a range check: "
                                  << ::testing::PrintToString(unchecked);
