@@ -117,6 +117,25 @@ std::vector<float> DisagreementGateTargets(const TrainingData& data,
                                            const std::vector<float>& action_scale, double margin) {
   std::vector<float> targets = DemonstrationDisagreement(data, action_scale);
   for (float& t : targets) t = t > margin ? 1.0f : 0.0f;
+  // A disagreement over fewer than two chunks' rows is dropped: a choice the camera decides
+  // (which plate) shapes the rest of the trajectory, while one action that differs already
+  // marks a chunk's rows, and a few such actions are timing (when the fingers close) that the
+  // tolerance did not absorb.
+  const int64_t shortest = 2 * static_cast<int64_t>(data.action_chunk);
+  int64_t r = 0;
+  while (r < data.num_demo) {
+    if (targets[r] == 0.0f) {
+      ++r;
+      continue;
+    }
+    int64_t end = r;  // the run of marked rows from r, within r's episode
+    while (end < data.num_demo && targets[end] == 1.0f &&
+           data.demo_episode[end] == data.demo_episode[r]) {
+      ++end;
+    }
+    if (end - r < shortest) std::fill(targets.begin() + r, targets.begin() + end, 0.0f);
+    r = end;
+  }
   return targets;
 }
 

@@ -21,7 +21,8 @@ namespace recon::learn {
 std::vector<float> DemonstrationDisagreement(const TrainingData& data,
                                              const std::vector<float>& action_scale = {});
 
-/// 1 where DemonstrationDisagreement exceeds `margin`, else 0.
+/// 1 where DemonstrationDisagreement exceeds `margin` for at least 2 action_chunk rows in a row
+/// of one episode, else 0 (a shorter disagreement is timing, not a choice).
 std::vector<float> DisagreementGateTargets(const TrainingData& data,
                                            const std::vector<float>& action_scale, double margin);
 

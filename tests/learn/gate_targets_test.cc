@@ -134,6 +134,33 @@ TEST(GateTargetsTest, EachActionDimensionWeighsByItsSizeInTheUsersUnits) {
   EXPECT_GT(DemonstrationDisagreement(small_only)[0], 1.0f);
 }
 
+TEST(GateTargetsTest, ADisagreementShorterThanTwoChunksIsNotMarked) {
+  // Two demonstrations alike but for a 3-step burst at steps 10-12 in one and a 12-step stretch
+  // from step 30 in the other.
+  auto episode = [](int from, int length) {
+    return Ramp(60, [=](int i) {
+      return std::vector<float>{i >= from && i < from + length ? 5.0f : 0.0f};
+    });
+  };
+  for (int chunk : {1, 4}) {
+    const TrainingData data = Data({episode(10, 3), episode(30, 12)}, 1, chunk);
+    const std::vector<float> d = DemonstrationDisagreement(data);
+    const std::vector<float> targets = DisagreementGateTargets(data, {}, 0.1);
+    int marked_burst = 0, marked_stretch = 0;
+    for (int64_t r = 0; r < 60; ++r) {
+      if (r >= 5 && r < 15) marked_burst += targets[r] > 0;
+      marked_stretch += targets[60 + r] > 0;  // the second demonstration's rows
+    }
+    EXPECT_GT(d[11], 0.1f) << "chunk " << chunk << ": the burst does disagree";
+    if (chunk == 1) {
+      EXPECT_GT(marked_burst, 0) << "with chunks of 1 every run counts";
+    } else {
+      EXPECT_EQ(marked_burst, 0) << "3 actions mark 6 rows, fewer than two chunks of 4: timing";
+    }
+    EXPECT_GE(marked_stretch, 12) << "chunk " << chunk << ": the long stretch stays";
+  }
+}
+
 TEST(GateTargetsTest, ASingleDemonstrationDisagreesWithNothing) {
   const TrainingData data =
       Data({Ramp(11, [](int i) { return std::vector<float>{static_cast<float>(i % 3)}; })});
