@@ -47,8 +47,9 @@ enum class GateTarget {
   kLoss,
   /// Where the teacher did something else in another demonstration at the nearest state: the
   /// largest, over the other demonstrations, of the squared difference per action between this
-  /// sample's chunk and the chunk at the other demonstration's nearest robot state, in units of
-  /// the actions' total variance (gate_targets.h), exceeds the margin. Fixed before training,
+  /// sample's chunk and the best-matching chunk within 5 steps of the other demonstration's
+  /// nearest robot state, in units of the actions' total variance, exceeds the margin for at
+  /// least two chunks' rows in a row (gate_targets.h: shorter is timing). Fixed before training,
   /// from the data alone (no beacons: the Baseline gets the same targets). Where every
   /// demonstration agrees, the state alone says what to do, so the image cannot be needed there.
   /// Each sample then trains only the branch its target picks (seeing where 1, blind where 0),
@@ -170,7 +171,8 @@ struct TrainConfig {
   double feature_noise = 0.0;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
-  /// there. The loss gains the blind branch's action term and the gate's binary cross-entropy
+  /// there (GateTarget::kLoss), or how much the demonstrations must disagree
+  /// (GateTarget::kDisagreement, in units of the actions' total variance). The loss gains the blind branch's action term and the gate's binary cross-entropy
   /// against these targets (held constant in the gradient: the gate does not push either
   /// branch). A first version trained g L(seeing) + (1 - g) L(blind) + margin g instead: its
   /// gate saturated shut everywhere within the first steps, before the seeing branch had
