@@ -32,6 +32,46 @@ std::vector<double> InverseSpread(const TrainingData& data) {
   return inverse;
 }
 
+// Each action dimension's weight in a squared difference of stored actions: it weighs by its
+// units, not by its spread (differences in the user's units, stored * scale, over the actions'
+// total variance in those units). Standardising each dimension instead would make a wrist joint
+// that hardly moves weigh as much as the joint that carries the arm, and its small corrections
+// look like disagreement.
+std::vector<double> ActionWeights(const TrainingData& data,
+                                  const std::vector<float>& action_scale) {
+  const int u_dim = data.spec.u_dim;
+  const int64_t rows = data.num_demo, width = static_cast<int64_t>(u_dim) * data.action_chunk;
+  std::vector<double> mean(u_dim, 0.0), square(u_dim, 0.0), weight(u_dim, 0.0);
+  for (int64_t r = 0; r < rows; ++r) {
+    for (int d = 0; d < u_dim; ++d) {
+      const double v = data.demo_u[r * width + d];  // the row's first action
+      mean[d] += v;
+      square[d] += v * v;
+    }
+  }
+  double total = 0;
+  for (int d = 0; d < u_dim; ++d) {
+    const double scale = action_scale.empty() ? 1.0 : action_scale[d];
+    const double m = mean[d] / static_cast<double>(rows);
+    total += std::max(square[d] / static_cast<double>(rows) - m * m, 0.0) * scale * scale;
+  }
+  for (int d = 0; d < u_dim; ++d) {
+    const double scale = action_scale.empty() ? 1.0 : action_scale[d];
+    weight[d] = total > 0 ? scale * scale / total : 0.0;
+  }
+  return weight;
+}
+
+// Episode e's rows are contiguous: [begins[e], begins[e + 1]); one more entry than episodes.
+std::vector<int64_t> EpisodeBegins(const TrainingData& data) {
+  const int64_t rows = data.num_demo;
+  const int episodes = data.demo_episode.back() + 1;
+  std::vector<int64_t> begin(episodes + 1, rows);
+  for (int64_t r = rows - 1; r >= 0; --r) begin[data.demo_episode[r]] = r;
+  for (int e = episodes - 1; e >= 0; --e) begin[e] = std::min(begin[e], begin[e + 1]);
+  return begin;
+}
+
 }  // namespace
 
 std::vector<float> DemonstrationDisagreement(const TrainingData& data,
@@ -39,40 +79,12 @@ std::vector<float> DemonstrationDisagreement(const TrainingData& data,
   const int64_t rows = data.num_demo;
   std::vector<float> out(static_cast<size_t>(rows), 0.0f);
   if (rows == 0) return out;
-  const int dim = data.spec.x_dim;
-  const int64_t width = static_cast<int64_t>(data.spec.u_dim) * data.action_chunk;
+  const int dim = data.spec.x_dim, u_dim = data.spec.u_dim;
+  const int64_t width = static_cast<int64_t>(u_dim) * data.action_chunk;
   const std::vector<double> inverse = InverseSpread(data);
-  // Each action dimension weighs by its units, not by its spread: differences in the user's
-  // units (stored * scale), over the actions' total variance in those units. Standardising each
-  // dimension instead would make a wrist joint that hardly moves weigh as much as the joint
-  // that carries the arm, and its small corrections look like disagreement.
-  const int u_dim = data.spec.u_dim;
-  std::vector<double> weight(u_dim, 0.0);
-  {
-    std::vector<double> mean(u_dim, 0.0), square(u_dim, 0.0);
-    for (int64_t r = 0; r < rows; ++r) {
-      for (int d = 0; d < u_dim; ++d) {
-        const double v = data.demo_u[r * width + d];  // the row's first action
-        mean[d] += v;
-        square[d] += v * v;
-      }
-    }
-    double total = 0;
-    for (int d = 0; d < u_dim; ++d) {
-      const double scale = action_scale.empty() ? 1.0 : action_scale[d];
-      const double m = mean[d] / static_cast<double>(rows);
-      total += std::max(square[d] / static_cast<double>(rows) - m * m, 0.0) * scale * scale;
-    }
-    for (int d = 0; d < u_dim; ++d) {
-      const double scale = action_scale.empty() ? 1.0 : action_scale[d];
-      weight[d] = total > 0 ? scale * scale / total : 0.0;
-    }
-  }
-  // Episode e's rows are contiguous: [begin[e], begin[e + 1]).
-  const int episodes = data.demo_episode.back() + 1;
-  std::vector<int64_t> begin(episodes + 1, rows);
-  for (int64_t r = rows - 1; r >= 0; --r) begin[data.demo_episode[r]] = r;
-  for (int e = episodes - 1; e >= 0; --e) begin[e] = std::min(begin[e], begin[e + 1]);
+  const std::vector<double> weight = ActionWeights(data, action_scale);
+  const std::vector<int64_t> begin = EpisodeBegins(data);
+  const int episodes = static_cast<int>(begin.size()) - 1;
   for (int64_t r = 0; r < rows; ++r) {
     const float* x = data.demo_x.data() + r * dim;
     const float* u = data.demo_u.data() + r * width;
