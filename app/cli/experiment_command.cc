@@ -371,9 +371,9 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
       ->add_option("--gate-target", flags->gate_target,
                    "where the feature gate learns to open: loss (where seeing lowers the action "
                    "loss by more than the margin, nats per action) or disagreement (where another "
-                   "demonstration's teacher acted otherwise at the nearest state by more than the "
-                   "margin, mean squared standardised difference per action); default: the "
-                   "world's recipe")
+                   "demonstration's teacher acted otherwise near the nearest state by more than "
+                   "the margin, in units of the actions' total variance, for at least two chunks' "
+                   "steps; docs/learning.md); default: the world's recipe")
       ->check(CLI::IsMember({"loss", "disagreement"}));
   command
       ->add_option("--action-chunk", flags->action_chunk,

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine/core/number_check.h"
+#include "engine/worlds/world.h"
 
 namespace recon::cli {
 
@@ -46,7 +47,8 @@ constexpr long long kMaxImageSide = 8192;  ///< a rendered image's width or heig
 /// 2^53: every seed up to it is exact in a double, so it reads back the same from any JSON
 /// reader (results.csv and summary.json carry the seeds).
 constexpr long long kMaxSeed = 9007199254740992LL;
-constexpr double kMaxDemoNoise_rad_s = 1.0;  ///< DART noise on the executed joint velocities
+/// DART noise on the executed joint velocities: the worlds' bound (ValidateExperimentConfig's).
+constexpr double kMaxDemoNoise_rad_s = worlds::kMaxDemoNoise;
 /// A Dynamic 2D beacon's noise sigma (world units; the paper's are 2.5 to 6.5).
 constexpr double kMaxDynamicNoise = 100.0;
 constexpr double kMaxWaitSeconds = 7 * 24 * 3600.0;  ///< how long a command may be asked to run

@@ -69,9 +69,11 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
                     " (standard deviations of each feature; got " +
                     FormatNumber(config.train.feature_noise) + ")");
   }
-  if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 || config.demo_noise > 1.0) {
-    throw UserError("--demo-noise must be between 0 and 1 (action units, rad/s for the arm; got " +
-                    FormatNumber(config.demo_noise) + ")");
+  if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 ||
+      config.demo_noise > worlds::kMaxDemoNoise) {
+    throw UserError("--demo-noise must be between 0 and " + FormatNumber(worlds::kMaxDemoNoise) +
+                    " (action units, rad/s for the arm; got " + FormatNumber(config.demo_noise) +
+                    ")");
   }
   {
     const std::unique_ptr<worlds::World> probe =

@@ -11,24 +11,30 @@ namespace {
 // How many steps apart two demonstrations may do the same thing and still agree.
 constexpr int64_t kTimingTolerance_steps = 5;
 
-// Per-dimension 1 / standard deviation of the demonstration states (0 for constant dimensions,
-// which then do not count in the distance).
-std::vector<double> InverseSpread(const TrainingData& data) {
-  const int dim = data.spec.x_dim;
-  const int64_t rows = data.num_demo;
-  std::vector<double> mean(dim, 0.0), square(dim, 0.0), inverse(dim, 0.0);
+// The variance of each of the first `dim` values of every row (`width` values a row).
+std::vector<double> ColumnVariances(const std::vector<float>& values, int64_t rows, int64_t width,
+                                    int dim) {
+  std::vector<double> mean(dim, 0.0), square(dim, 0.0), variance(dim, 0.0);
   for (int64_t r = 0; r < rows; ++r) {
     for (int d = 0; d < dim; ++d) {
-      const double v = data.demo_x[r * dim + d];
+      const double v = values[r * width + d];
       mean[d] += v;
       square[d] += v * v;
     }
   }
   for (int d = 0; d < dim; ++d) {
     const double m = mean[d] / static_cast<double>(rows);
-    const double variance = square[d] / static_cast<double>(rows) - m * m;
-    inverse[d] = variance > 1e-12 ? 1.0 / std::sqrt(variance) : 0.0;
+    variance[d] = square[d] / static_cast<double>(rows) - m * m;
   }
+  return variance;
+}
+
+// Per-dimension 1 / standard deviation of the demonstration states (0 for constant dimensions,
+// which then do not count in the distance).
+std::vector<double> InverseSpread(const TrainingData& data) {
+  const int dim = data.spec.x_dim;
+  std::vector<double> inverse = ColumnVariances(data.demo_x, data.num_demo, dim, dim);
+  for (double& v : inverse) v = v > 1e-12 ? 1.0 / std::sqrt(v) : 0.0;
   return inverse;
 }
 
@@ -40,25 +46,17 @@ std::vector<double> InverseSpread(const TrainingData& data) {
 std::vector<double> ActionWeights(const TrainingData& data,
                                   const std::vector<float>& action_scale) {
   const int u_dim = data.spec.u_dim;
-  const int64_t rows = data.num_demo, width = static_cast<int64_t>(u_dim) * data.action_chunk;
-  std::vector<double> mean(u_dim, 0.0), square(u_dim, 0.0), weight(u_dim, 0.0);
-  for (int64_t r = 0; r < rows; ++r) {
-    for (int d = 0; d < u_dim; ++d) {
-      const double v = data.demo_u[r * width + d];  // the row's first action
-      mean[d] += v;
-      square[d] += v * v;
-    }
-  }
+  // Of each row's first action.
+  const std::vector<double> variance = ColumnVariances(
+      data.demo_u, data.num_demo, static_cast<int64_t>(u_dim) * data.action_chunk, u_dim);
+  auto squared_scale = [&](int d) {
+    const double scale = action_scale.empty() ? 1.0 : action_scale[d];
+    return scale * scale;
+  };
   double total = 0;
-  for (int d = 0; d < u_dim; ++d) {
-    const double scale = action_scale.empty() ? 1.0 : action_scale[d];
-    const double m = mean[d] / static_cast<double>(rows);
-    total += std::max(square[d] / static_cast<double>(rows) - m * m, 0.0) * scale * scale;
-  }
-  for (int d = 0; d < u_dim; ++d) {
-    const double scale = action_scale.empty() ? 1.0 : action_scale[d];
-    weight[d] = total > 0 ? scale * scale / total : 0.0;
-  }
+  for (int d = 0; d < u_dim; ++d) total += std::max(variance[d], 0.0) * squared_scale(d);
+  std::vector<double> weight(u_dim, 0.0);
+  for (int d = 0; d < u_dim; ++d) weight[d] = total > 0 ? squared_scale(d) / total : 0.0;
   return weight;
 }
 

@@ -11,8 +11,10 @@ namespace recon::learn {
 
 /// Per demonstration row of `data`, how much the teacher's actions there differ from another
 /// demonstration's at its nearest robot state: the largest, over the other episodes, of the
-/// squared difference per action between the two rows' action chunks, in units of the actions'
-/// total variance (the sum over action dimensions; two rows drawn at random differ by about 2).
+/// squared difference per action between this row's action chunk and the best-matching chunk
+/// within 5 rows of that episode's nearest row (the same action a few steps off is agreement),
+/// in units of the actions' total variance (the sum over action dimensions; two rows drawn at
+/// random differ by about 2).
 /// `action_scale` is what one stored unit of each action dimension is worth in the user's units
 /// (TargetScaling::u_scale when the rows are standardised; empty = as recorded), so that each
 /// dimension weighs by its real size. The nearest row is found by Euclidean distance between

@@ -117,10 +117,13 @@ class World {
 /// teacher's own u is stored as the label, so the data shows how the teacher recovers from the
 /// small errors a learner will make. sigma = 0 is off.
 struct DemoNoise {
-  double sigma = 0.0;  ///< in the action's units (rad/s for the arm worlds)
+  double sigma = 0.0;  ///< in the action's units (rad/s for the arm worlds), at most kMaxDemoNoise
   /// Each take's noise is drawn from Derive(seed, take seed): reproducible per take.
   uint64_t seed = 0;
 };
+
+/// The largest DemoNoise::sigma a session or an experiment accepts (action units).
+constexpr double kMaxDemoNoise = 1.0;
 
 /// A run's demonstrations are grouped into configurations: demonstration i is take i % n of
 /// configuration i / n (n = World::DemosPerConfiguration), and a configuration's scene comes from

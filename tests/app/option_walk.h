@@ -35,4 +35,28 @@ inline void CollectNumericOptions(const CLI::App& app, const std::string& path,
   }
 }
 
+/// What a table of hostile-value rows misses in `app`: each numeric option without a range check
+/// ("path name: no range check") or without a row in `table` ("path name: not in the table").
+/// `found` receives how many numeric options the walk found.
+inline std::vector<std::string> NumericOptionGaps(
+    const CLI::App& app, const std::set<std::pair<std::string, std::string>>& table,
+    size_t& found) {
+  std::set<std::pair<std::string, std::string>> numeric;
+  std::vector<std::string> unchecked, gaps;
+  CollectNumericOptions(app, "", numeric, unchecked);
+  found = numeric.size();
+  for (const std::string& option : unchecked) gaps.push_back(option + ": no range check");
+  for (const auto& [path, name] : numeric) {
+    if (table.count({path, name}) == 0) gaps.push_back(path + " " + name + ": not in the table");
+  }
+  return gaps;
+}
+
+/// The values a hostile or careless user types into a numeric option; `whole` adds a fraction.
+inline std::vector<std::string> HostileValues(bool whole) {
+  std::vector<std::string> values = {"nan", "inf", "-1", "1e30", "abc"};
+  if (whole) values.push_back("2.5");
+  return values;
+}
+
 }  // namespace recon::testing
