@@ -69,6 +69,7 @@ struct ExperimentFlags {
   double feature_gate = 0.0;   ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
+  std::string lr_schedule;          ///< "constant" | "cosine"; empty: the world's recipe
   int action_chunk = -1;            ///< -1: the world's recipe
   std::string ensemble;             ///< "all" | "gripper"; empty: the world's recipe
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
@@ -135,6 +136,10 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   if (use("--loss")) config.train.loss = learn::ParseLossKind(flags.loss);
   if (given("--lr")) config.train.learning_rate = flags.learning_rate;
+  config.train.lr_schedule =
+      flags.lr_schedule.empty()
+          ? (flags.authors_recipe ? learn::LrSchedule::kConstant : recipe.train.lr_schedule)
+          : learn::ParseLrSchedule(flags.lr_schedule);
   if (given("--steps")) config.train.steps = flags.steps;
   if (use("--batch")) config.train.batch_size = flags.batch;
   if (use("--restart")) config.train.restart_rule = flags.restart;
@@ -319,6 +324,11 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "tabletop 0.001)")
       ->check(PositiveNumberUpTo(kMaxLearningRate));
   command
+      ->add_option("--lr-schedule", flags->lr_schedule,
+                   "constant or cosine (decay to 0 over the run) learning rate (default: the "
+                   "world's recipe)")
+      ->check(CLI::IsMember({"constant", "cosine"}));
+  command
       ->add_option("--beacon-weight", flags->beacon_weight,
                    "weight of RECON's beacon term (default: the world's recipe: 1, the "
                    "paper's, 0.1 on the tabletop; 1.2 with --authors-recipe)")
@@ -406,7 +416,7 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
     command
         ->add_option("--noise", flags->beacon_noise,
                      "beacon noise sigma per axis, metres (default: a DWM1001's; 0 = exact)")
-        ->check(NumberBetween(0, worlds::Tabletop::kMaxBeaconNoise_m))
+        ->check(NumberBetween(0, kMaxBeaconNoise_m))
         ->capture_default_str();
     command
         ->add_option("--demo-noise", flags->demo_noise,

@@ -49,6 +49,8 @@ constexpr long long kMaxImageSide = 8192;  ///< a rendered image's width or heig
 constexpr long long kMaxSeed = 9007199254740992LL;
 /// DART noise on the executed joint velocities: the worlds' bound (ValidateExperimentConfig's).
 constexpr double kMaxDemoNoise_rad_s = worlds::kMaxDemoNoise;
+/// A simulated beacon's noise sigma (metres): the worlds' bound.
+constexpr double kMaxBeaconNoise_m = worlds::kMaxBeaconNoise_m;
 /// A Dynamic 2D beacon's noise sigma (world units; the paper's are 2.5 to 6.5).
 constexpr double kMaxDynamicNoise = 100.0;
 constexpr double kMaxWaitSeconds = 7 * 24 * 3600.0;  ///< how long a command may be asked to run

@@ -206,7 +206,7 @@ void AddRecordCommand(CLI::App& app) {
       ->add_option("--noise", flags->noise,
                    "beacon noise sigma per axis for a new session (default: a DWM1001's 0.07 m "
                    "on the tabletop, 0 elsewhere)")
-      ->check(NumberBetween(0, 0.5));
+      ->check(NumberBetween(0, kMaxBeaconNoise_m));
   record
       ->add_option("--demo-noise", flags->demo_noise,
                    "noise injected into the executed joint velocities while demonstrating, for a "

@@ -76,7 +76,7 @@ void AddSessionRepairCommand(CLI::App& session) {
       ->check(SeedNumber())
       ->capture_default_str();
   repair->add_option("--noise", flags->noise, "its beacon noise sigma per axis (m)")
-      ->check(NumberBetween(0, 0.5));
+      ->check(NumberBetween(0, kMaxBeaconNoise_m));
   repair->add_option("--demo-noise", flags->demo_noise, "its injected demonstration noise (rad/s)")
       ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
   repair->callback([flags, repair] { RunRepair(*flags, *repair); });

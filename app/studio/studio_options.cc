@@ -4,6 +4,7 @@
 
 namespace recon::studio {
 
+using cli::kMaxBeaconNoise_m;
 using cli::kMaxDemoNoise_rad_s;
 using cli::kMaxSteps;
 using cli::kMaxTests;
@@ -27,7 +28,7 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
   app.add_option("--noise", flags.options.beacon_noise_sigma,
                  "beacon noise sigma per axis of a new simulated session, metres (default: a "
                  "DWM1001's 0.07 on the tabletop)")
-      ->check(NumberBetween(0, 0.5));
+      ->check(NumberBetween(0, kMaxBeaconNoise_m));
   app.add_option("--demo-noise", flags.options.demo_noise_sigma,
                  "noise injected into the executed joint velocities while demonstrating in a new "
                  "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")

@@ -131,6 +131,56 @@ std::string ReadString(torch::serialize::InputArchive& archive, const char* key)
 
 std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
 
+// FNV-1a (64 bits) of a byte range, as 16 hex digits: a digest of each entry, so that a flipped
+// bit that leaves a weight finite (or a configuration parseable) is still found on reading.
+std::string Digest(const void* bytes, size_t size) {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  const auto* p = static_cast<const unsigned char*>(bytes);
+  for (size_t i = 0; i < size; ++i) {
+    hash ^= p[i];
+    hash *= 0x100000001b3ULL;
+  }
+  std::ostringstream text;
+  text << std::hex;
+  text.width(16);
+  text.fill('0');
+  text << hash;
+  return text.str();
+}
+std::string Digest(const std::vector<float>& values) {
+  return Digest(values.data(), values.size() * sizeof(float));
+}
+std::string Digest(const std::string& text) { return Digest(text.data(), text.size()); }
+
+// The digests a checkpoint stores ("digests", a JSON object by entry name); checkpoints written
+// before them have none, and read as before.
+class Digests {
+ public:
+  explicit Digests(torch::serialize::InputArchive& archive) {
+    c10::IValue value;
+    if (archive.try_read("digests", value) && value.isString()) {
+      try {
+        stored_ = json::parse(value.toStringRef());
+      } catch (const json::exception&) {
+        throw UserError("entry 'digests' is damaged");
+      }
+    }
+  }
+  template <typename T>
+  const T& Check(const char* entry, const T& contents) const {
+    if (stored_.is_object() && stored_.contains(entry) &&
+        stored_[entry] != json(Digest(contents))) {
+      throw UserError(std::string("entry '") + entry +
+                      "' is damaged (its contents do not match the digest written with them): "
+                      "train it again");
+    }
+    return contents;
+  }
+
+ private:
+  json stored_;
+};
+
 // Reads everything; `with_optimizer` = false skips the Adam moments (LoadPolicy).
 CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) {
   if (!std::filesystem::is_regular_file(path)) {
@@ -143,20 +193,21 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
     if (ReadString(archive, "format") != kFormat) {
       throw UserError("not a RECON checkpoint (format is not " + std::string(kFormat) + ")");
     }
-    c.network = NetworkConfigFromJson(ReadString(archive, "network"));
-    c.train = TrainConfigFromJson(ReadString(archive, "train"));
-    c.spec = DataSpecFromJson(ReadString(archive, "spec"));
-    StateFromJson(ReadString(archive, "state"), c.state, c.fingerprint);
+    const Digests digests(archive);
+    c.network = NetworkConfigFromJson(digests.Check("network", ReadString(archive, "network")));
+    c.train = TrainConfigFromJson(digests.Check("train", ReadString(archive, "train")));
+    c.spec = DataSpecFromJson(digests.Check("spec", ReadString(archive, "spec")));
+    StateFromJson(digests.Check("state", ReadString(archive, "state")), c.state, c.fingerprint);
     at::Tensor tensor;
     archive.read("params", tensor);
-    c.state.params = FromTensor(tensor, "params");
+    c.state.params = digests.Check("params", FromTensor(tensor, "params"));
     archive.read("target_scaling", tensor);
-    c.scaling = FromTensor(tensor, "target_scaling");
+    c.scaling = digests.Check("target_scaling", FromTensor(tensor, "target_scaling"));
     if (with_optimizer) {
       archive.read("exp_avg", tensor);
-      c.state.exp_avg = FromTensor(tensor, "exp_avg");
+      c.state.exp_avg = digests.Check("exp_avg", FromTensor(tensor, "exp_avg"));
       archive.read("exp_avg_sq", tensor);
-      c.state.exp_avg_sq = FromTensor(tensor, "exp_avg_sq");
+      c.state.exp_avg_sq = digests.Check("exp_avg_sq", FromTensor(tensor, "exp_avg_sq"));
     }
   } catch (const UserError& e) {
     throw UserError("checkpoint '" + path + "': " + e.what());
@@ -174,15 +225,25 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
   const std::string temp = TemporarySibling(path);
   try {
     torch::serialize::OutputArchive archive;
+    json digests;
+    auto write_string = [&](const char* entry, const std::string& text) {
+      archive.write(entry, c10::IValue(text));
+      digests[entry] = Digest(text);
+    };
+    auto write_tensor = [&](const char* entry, const std::vector<float>& values) {
+      archive.write(entry, ToTensor(values));
+      digests[entry] = Digest(values);
+    };
     archive.write("format", c10::IValue(std::string(kFormat)));
-    archive.write("network", c10::IValue(ToJson(impl_->network())));
-    archive.write("train", c10::IValue(ToJson(impl_->train())));
-    archive.write("spec", c10::IValue(ToJson(impl_->arch().spec)));
-    archive.write("state", c10::IValue(StateToJson(s, impl_->fingerprint())));
-    archive.write("params", ToTensor(s.params));
-    archive.write("target_scaling", ToTensor(impl_->scaling().Flatten()));
-    archive.write("exp_avg", ToTensor(s.exp_avg));
-    archive.write("exp_avg_sq", ToTensor(s.exp_avg_sq));
+    write_string("network", ToJson(impl_->network()));
+    write_string("train", ToJson(impl_->train()));
+    write_string("spec", ToJson(impl_->arch().spec));
+    write_string("state", StateToJson(s, impl_->fingerprint()));
+    write_tensor("params", s.params);
+    write_tensor("target_scaling", impl_->scaling().Flatten());
+    write_tensor("exp_avg", s.exp_avg);
+    write_tensor("exp_avg_sq", s.exp_avg_sq);
+    archive.write("digests", c10::IValue(digests.dump()));
     archive.save_to(temp);
     // rename() replaces the old file atomically: a crash leaves the old or the new checkpoint.
     std::filesystem::rename(temp, path);

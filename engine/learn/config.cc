@@ -1,5 +1,8 @@
 // Names and presets of the learner's settings (learner.h).
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/core/error.h"
 #include "engine/learn/learner.h"
 
@@ -29,6 +32,12 @@ GateTarget ParseGateTarget(const std::string& name) {
   throw UserError("unknown gate target '" + name + "' (expected loss or disagreement)");
 }
 
+LrSchedule ParseLrSchedule(const std::string& name) {
+  if (name == "constant") return LrSchedule::kConstant;
+  if (name == "cosine") return LrSchedule::kCosine;
+  throw UserError("unknown learning-rate schedule '" + name + "' (expected constant or cosine)");
+}
+
 std::string ToString(Method method) { return method == Method::kRecon ? "recon" : "baseline"; }
 
 std::string ToString(LossKind loss) { return loss == LossKind::kNll ? "nll" : "mse-sample"; }
@@ -37,6 +46,22 @@ std::string ToString(Backend backend) { return backend == Backend::kFused ? "fus
 
 std::string ToString(GateTarget target) {
   return target == GateTarget::kLoss ? "loss" : "disagreement";
+}
+
+std::string ToString(LrSchedule schedule) {
+  return schedule == LrSchedule::kConstant ? "constant" : "cosine";
+}
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+double ScheduledLearningRate(double learning_rate, LrSchedule schedule, int step, int steps) {
+  if (schedule == LrSchedule::kConstant || steps <= 0) return learning_rate;
+  // Step 0 trains at the full rate and the last at a small positive one: (step + 1) / steps
+  // would end at exactly 0, a step that changes nothing.
+  const double progress = std::clamp(static_cast<double>(step) / steps, 0.0, 1.0);
+  return learning_rate * 0.5 * (1.0 + std::cos(kPi * progress));
 }
 
 TrainConfig AuthorsRecipe() {

@@ -63,6 +63,7 @@ std::string ToJson(const TrainConfig& t) {
   j["feature_noise"] = t.feature_noise;
   j["gate_margin"] = t.gate_margin;
   j["gate_target"] = ToString(t.gate_target);
+  j["lr_schedule"] = ToString(t.lr_schedule);
   j["standardize_inputs"] = t.standardize_inputs;
   j["max_attempts"] = t.max_attempts;
   j["restart_action_threshold"] = t.restart_action_threshold;
@@ -136,6 +137,12 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
     std::string gate_target;
     Read(j, "gate_target", gate_target, what);
     t.gate_target = ParseGateTarget(gate_target);
+  }
+  // ... and with a constant learning rate.
+  if (j.contains("lr_schedule")) {
+    std::string schedule;
+    Read(j, "lr_schedule", schedule, what);
+    t.lr_schedule = ParseLrSchedule(schedule);
   }
   if (j.contains("standardize_inputs")) {
     Read(j, "standardize_inputs", t.standardize_inputs, what);

@@ -58,14 +58,28 @@ enum class GateTarget {
   kDisagreement,
 };
 
+/// How the learning rate moves over a training run.
+enum class LrSchedule {
+  kConstant,  ///< TrainConfig::learning_rate throughout (the authors')
+  /// Cosine decay from TrainConfig::learning_rate at the first step to 0 after the last
+  /// (Loshchilov and Hutter, SGDR; LeRobot's default): the weights settle at the end of the run
+  /// instead of being a snapshot of Adam's noise at a large rate, which made the tabletop's
+  /// outcome depend on the training seed (docs/results.md).
+  kCosine,
+};
+
 Method ParseMethod(const std::string& name);          ///< "recon" | "baseline"; UserError otherwise
 LossKind ParseLossKind(const std::string& name);      ///< "nll" | "mse-sample"; UserError otherwise
 Backend ParseBackend(const std::string& name);        ///< "fused" | "torch"; UserError otherwise
 GateTarget ParseGateTarget(const std::string& name);  ///< "loss" | "disagreement"; UserError
+LrSchedule ParseLrSchedule(const std::string& name);  ///< "constant" | "cosine"; UserError
 std::string ToString(Method method);
 std::string ToString(LossKind loss);
 std::string ToString(Backend backend);
 std::string ToString(GateTarget target);
+std::string ToString(LrSchedule schedule);
+/// The learning rate of 0-based step `step` of a `steps`-step run.
+double ScheduledLearningRate(double learning_rate, LrSchedule schedule, int step, int steps);
 
 /// Architecture. The defaults are the authors' networks for 3x32x32 images (REFERENCE.md 2).
 struct NetworkConfig {
@@ -131,7 +145,9 @@ struct TrainConfig {
   Method method = Method::kRecon;
   LossKind loss = LossKind::kNll;
   double learning_rate = 4e-4;  ///< Adam
-  int batch_size = 20;          ///< drawn with replacement each step, from demos and from play
+  /// Checkpoints written before the choice existed read as kConstant.
+  LrSchedule lr_schedule = LrSchedule::kConstant;
+  int batch_size = 20;  ///< drawn with replacement each step, from demos and from play
   int steps = 6001;
   double action_weight = 1.0;
   double beacon_weight = 1.0;
@@ -172,11 +188,12 @@ struct TrainConfig {
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
   /// there (GateTarget::kLoss), or how much the demonstrations must disagree
-  /// (GateTarget::kDisagreement, in units of the actions' total variance). The loss gains the blind branch's action term and the gate's binary cross-entropy
-  /// against these targets (held constant in the gradient: the gate does not push either
-  /// branch). A first version trained g L(seeing) + (1 - g) L(blind) + margin g instead: its
-  /// gate saturated shut everywhere within the first steps, before the seeing branch had
-  /// learnt where it pays, and a saturated sigmoid has no gradient to reopen.
+  /// (GateTarget::kDisagreement, in units of the actions' total variance). The loss gains the blind
+  /// branch's action term and the gate's binary cross-entropy against these targets (held constant
+  /// in the gradient: the gate does not push either branch). A first version trained g L(seeing) +
+  /// (1 - g) L(blind) + margin g instead: its gate saturated shut everywhere within the first
+  /// steps, before the seeing branch had learnt where it pays, and a saturated sigmoid has no
+  /// gradient to reopen.
   double gate_margin = 0.0;
   /// What the gate's targets mark (GateTarget); gate_margin is in its units.
   GateTarget gate_target = GateTarget::kLoss;

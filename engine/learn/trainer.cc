@@ -203,7 +203,8 @@ void TrainerImpl::Step() {
   a.grad = grads_.data();
   a.exp_avg = exp_avg_.data();
   a.exp_avg_sq = exp_avg_sq_.data();
-  a.lr = static_cast<float>(train_.learning_rate);
+  a.lr = static_cast<float>(
+      ScheduledLearningRate(train_.learning_rate, train_.lr_schedule, step_, train_.steps));
   a.beta1 = kBeta1;
   a.beta2 = kBeta2;
   a.eps = kAdamEps;

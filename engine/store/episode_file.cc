@@ -345,6 +345,7 @@ DemoRecord ReadDemoGroup(const h5::File& file, hid_t group, const SessionManifes
   DemoRecord record;
   record.meta = ReadEpisodeMeta(file, group);
   if (record.meta.kind != "demo") h5::Fail(file.path(), "holds play data, not a demonstration");
+  h5::VerifyChecksums(file, group);  // also what no field below reads (states, dones)
   const hsize_t n = static_cast<hsize_t>(record.meta.num_samples);
   std::vector<Sample>& samples = record.episode.samples;
   samples.resize(n);
@@ -364,6 +365,7 @@ PlayRecord ReadPlayGroup(const h5::File& file, hid_t group, const SessionManifes
   PlayRecord record;
   record.meta = ReadEpisodeMeta(file, group);
   if (record.meta.kind != "play") h5::Fail(file.path(), "holds a demonstration, not play data");
+  h5::VerifyChecksums(file, group);  // also what no field below reads (states, dones)
   record.samples.resize(static_cast<size_t>(record.meta.num_samples));
   ReadStateAndObservations(file, group, layout, record.samples);
   return record;

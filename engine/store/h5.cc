@@ -76,6 +76,25 @@ Handle OpenAttribute(const File& file, hid_t location, const std::string& name) 
   return attribute;
 }
 
+// What a read error of a checksummed dataset says.
+std::string DamagedDataset(const std::string& name) {
+  return "dataset '" + name +
+         "' is damaged (its data does not match its checksum, or the file is truncated)";
+}
+
+// Chunks of a checksummed array hold at most this many bytes (whole rows, at least one).
+constexpr hsize_t kChunkBytes = 1 << 20;
+
+// Whether a dataset's chunks carry Fletcher-32 checksums (files written before they did do not).
+bool HasChecksum(hid_t dataset) {
+  const Handle properties(H5Dget_create_plist(dataset));
+  unsigned flags = 0;
+  size_t values = 0;
+  unsigned config = 0;
+  return properties.valid() && H5Pget_filter_by_id2(properties.id(), H5Z_FILTER_FLETCHER32, &flags,
+                                                    &values, nullptr, 0, nullptr, &config) >= 0;
+}
+
 template <typename T>
 std::vector<T> ReadWhole(const File& file, hid_t location, const std::string& name,
                          hid_t memory_type) {
@@ -84,9 +103,12 @@ std::vector<T> ReadWhole(const File& file, hid_t location, const std::string& na
   const hssize_t count = H5Sget_simple_extent_npoints(space.id());
   if (count < 0) Fail(file.path(), "cannot read the shape of dataset '" + name + "'");
   std::vector<T> values(static_cast<size_t>(count));
+  const bool checksummed = HasChecksum(dataset.id());  // asked first: HDF5 calls reset the errors
   if (count > 0 &&
       H5Dread(dataset.id(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0) {
-    Fail(file.path(), "cannot read dataset '" + name + "' (truncated or corrupt file?)");
+    Fail(file.path(), checksummed
+                          ? DamagedDataset(name)
+                          : "cannot read dataset '" + name + "' (truncated or corrupt file?)");
   }
   return values;
 }
@@ -243,14 +265,61 @@ void WriteArray(const File& file, hid_t location, const std::string& name, Eleme
                 const std::vector<hsize_t>& dims, const void* data) {
   SilenceAutomaticErrorPrinting();
   const Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-  const Handle dataset(H5Dcreate2(location, name.c_str(), FileType(type), space.id(), H5P_DEFAULT,
-                                  H5P_DEFAULT, H5P_DEFAULT));
-  if (!dataset.valid()) Fail(file.path(), "cannot create dataset '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : dims) count *= d;
+  // Every non-empty array is stored in chunks with a Fletcher-32 checksum each, which HDF5
+  // verifies on every read: a flipped bit in an image is then a read error, not a training
+  // sample. An empty array has no data to damage (and cannot be chunked).
+  const Handle properties(H5Pcreate(H5P_DATASET_CREATE));
+  if (count > 0 && !dims.empty()) {
+    std::vector<hsize_t> chunk = dims;
+    const hsize_t row_bytes = count / dims[0] * H5Tget_size(FileType(type));
+    chunk[0] = std::clamp<hsize_t>(kChunkBytes / std::max<hsize_t>(row_bytes, 1), 1, dims[0]);
+    if (H5Pset_chunk(properties.id(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+        H5Pset_fletcher32(properties.id()) < 0) {
+      Fail(file.path(), "cannot set up the checksum of dataset '" + name + "'");
+    }
+  }
+  const Handle dataset(H5Dcreate2(location, name.c_str(), FileType(type), space.id(), H5P_DEFAULT,
+                                  properties.id(), H5P_DEFAULT));
+  if (!dataset.valid()) Fail(file.path(), "cannot create dataset '" + name + "'");
   if (count > 0 &&
       H5Dwrite(dataset.id(), MemoryType(type), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
     Fail(file.path(), "cannot write dataset '" + name + "'");
+  }
+}
+
+namespace {
+
+herr_t CollectDatasetNames(hid_t group, const char* name, const H5L_info_t* /*info*/, void* out) {
+  if (H5Oexists_by_name(group, name, H5P_DEFAULT) <= 0) return 0;  // a dangling link
+  H5O_info_t info;
+  if (H5Oget_info_by_name(group, name, &info, H5P_DEFAULT) >= 0 && info.type == H5O_TYPE_DATASET) {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void VerifyChecksums(const File& file, hid_t location) {
+  SilenceAutomaticErrorPrinting();
+  std::vector<std::string> names;
+  if (H5Lvisit(location, H5_INDEX_NAME, H5_ITER_INC, CollectDatasetNames, &names) < 0) {
+    Fail(file.path(), "cannot list the datasets");
+  }
+  std::vector<char> buffer;
+  for (const std::string& name : names) {
+    const Handle dataset = OpenDataset(file, location, name);
+    const Handle type(H5Dget_type(dataset.id()));
+    if (!HasChecksum(dataset.id()) || H5Tget_class(type.id()) == H5T_STRING) continue;
+    const Handle space(H5Dget_space(dataset.id()));
+    const hssize_t count = H5Sget_simple_extent_npoints(space.id());
+    if (count <= 0) continue;
+    buffer.resize(static_cast<size_t>(count) * H5Tget_size(type.id()));
+    if (H5Dread(dataset.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
+      Fail(file.path(), DamagedDataset(name));
+    }
   }
 }
 

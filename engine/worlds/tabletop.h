@@ -58,8 +58,6 @@ class Tabletop : public World {
   /// (devices/uwb/simulated_dwm1001.h) and the cell's calibration measures it: the default beacon
   /// noise of a simulated tabletop session or experiment.
   static constexpr double kDwm1001NoiseSigma_m = 0.07;
-  /// More than this is no beacon at all (the table is 1 m across).
-  static constexpr double kMaxBeaconNoise_m = 0.5;
 
   /// Throws UserError for an unknown placement, bad noise or image size, or a null renderer.
   Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer> renderer);

@@ -124,6 +124,9 @@ struct DemoNoise {
 
 /// The largest DemoNoise::sigma a session or an experiment accepts (action units).
 constexpr double kMaxDemoNoise = 1.0;
+/// The largest beacon noise (per-axis sigma, metres) a world, a session or an experiment
+/// accepts: more is no beacon at all (the tabletop is 1 m across).
+constexpr double kMaxBeaconNoise_m = 0.5;
 
 /// A run's demonstrations are grouped into configurations: demonstration i is take i % n of
 /// configuration i / n (n = World::DemosPerConfiguration), and a configuration's scene comes from

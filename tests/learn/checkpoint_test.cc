@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -266,6 +267,72 @@ TEST(CheckpointTest, MissingCorruptOrTruncatedFilesAreUserErrors) {
 
   EXPECT_THAT(UserErrorOf([&] { trainer.SaveCheckpoint(TempPath("no/such/dir.ckpt")); }),
               HasSubstr("cannot write checkpoint"));
+}
+
+// A copy of checkpoint `from` with `edit` applied to its entries (every other entry as it was).
+void RewriteCheckpoint(const std::string& from, const std::string& to,
+                       const std::function<void(const std::string&, c10::IValue&)>& edit) {
+  torch::serialize::InputArchive in;
+  in.load_from(from);
+  torch::serialize::OutputArchive out;
+  for (const char* key : {"format", "network", "train", "spec", "state", "params", "target_scaling",
+                          "exp_avg", "exp_avg_sq", "digests"}) {
+    c10::IValue value;
+    if (!in.try_read(key, value)) continue;
+    edit(key, value);
+    if (value.isNone()) continue;  // dropped
+    if (value.isTensor()) {
+      out.write(key, value.toTensor());
+    } else {
+      out.write(key, value);
+    }
+  }
+  out.save_to(to);
+}
+
+TEST(CheckpointTest, AnEntryChangedOnDiskIsFoundByItsDigest) {
+  const Dataset data = MakeVectorTask(1, 5);
+  Trainer trainer(data, NetworkConfig{}, ShortAuthors(5));
+  trainer.Train();
+  const std::string good = TempPath("digest_good.ckpt");
+  trainer.SaveCheckpoint(good);
+  EXPECT_FALSE(ReadCheckpointString(good, "digests").empty());
+  // One weight a little off (still finite: the NaN check cannot see it), and a configuration
+  // that still parses.
+  const std::string weight = TempPath("digest_weight.ckpt");
+  RewriteCheckpoint(good, weight, [](const std::string& key, c10::IValue& value) {
+    if (key == "params") {
+      torch::Tensor t = value.toTensor().clone();
+      t[0] += 1e-3f;
+      value = t;
+    }
+  });
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(weight); }), HasSubstr("entry 'params' is damaged"));
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(weight, data); }), HasSubstr(weight));
+  const std::string moments = TempPath("digest_moments.ckpt");
+  RewriteCheckpoint(good, moments, [](const std::string& key, c10::IValue& value) {
+    if (key == "exp_avg_sq") value = value.toTensor() + 1;
+  });
+  EXPECT_NO_THROW(LoadPolicy(moments)) << "a policy does not read the optimizer's moments";
+  EXPECT_THAT(UserErrorOf([&] { Trainer::Resume(moments, data); }),
+              HasSubstr("entry 'exp_avg_sq' is damaged"));
+  const std::string config = TempPath("digest_config.ckpt");
+  RewriteCheckpoint(good, config, [](const std::string& key, c10::IValue& value) {
+    if (key == "train") {
+      std::string text = value.toStringRef();
+      text.replace(text.find("\"steps\":5"), 9, "\"steps\":6");
+      value = c10::IValue(text);
+    }
+  });
+  EXPECT_THAT(UserErrorOf([&] { LoadPolicy(config); }), HasSubstr("entry 'train' is damaged"));
+  // A checkpoint written before digests existed reads as before.
+  const std::string old = TempPath("digest_old.ckpt");
+  RewriteCheckpoint(good, old, [](const std::string& key, c10::IValue& value) {
+    if (key == "digests") value = c10::IValue();
+  });
+  EXPECT_TRUE(ReadCheckpointString(old, "digests").empty());
+  EXPECT_TRUE(BitwiseEqual(Probe(LoadPolicy(old), data), Probe(trainer.policy(), data)));
+  EXPECT_EQ(Trainer::Resume(old, data)->step(), 5);
 }
 
 TEST(CheckpointTest, ArchitectureMismatchIsAUserError) {
