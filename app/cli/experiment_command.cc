@@ -133,13 +133,13 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     config.train.steps = recipe.train.steps;
     config.train.beacon_weight = recipe.train.beacon_weight;
     config.train.play_weight = recipe.train.play_weight;
+    config.train.lr_schedule = recipe.train.lr_schedule;
   }
   if (use("--loss")) config.train.loss = learn::ParseLossKind(flags.loss);
   if (given("--lr")) config.train.learning_rate = flags.learning_rate;
-  config.train.lr_schedule =
-      flags.lr_schedule.empty()
-          ? (flags.authors_recipe ? learn::LrSchedule::kConstant : recipe.train.lr_schedule)
-          : learn::ParseLrSchedule(flags.lr_schedule);
+  if (!flags.lr_schedule.empty()) {
+    config.train.lr_schedule = learn::ParseLrSchedule(flags.lr_schedule);
+  }
   if (given("--steps")) config.train.steps = flags.steps;
   if (use("--batch")) config.train.batch_size = flags.batch;
   if (use("--restart")) config.train.restart_rule = flags.restart;

@@ -166,15 +166,30 @@ class Digests {
       }
     }
   }
+  /// UserError when `contents` of `entry` do not match the digest stored for it.
   template <typename T>
-  const T& Check(const char* entry, const T& contents) const {
+  void Check(const char* entry, const T& contents) const {
     if (stored_.is_object() && stored_.contains(entry) &&
         stored_[entry] != json(Digest(contents))) {
       throw UserError(std::string("entry '") + entry +
                       "' is damaged (its contents do not match the digest written with them): "
                       "train it again");
     }
-    return contents;
+  }
+  /// ReadString(archive, entry), checked.
+  std::string CheckedString(torch::serialize::InputArchive& archive, const char* entry) const {
+    std::string text = ReadString(archive, entry);
+    Check(entry, text);
+    return text;
+  }
+  /// The 1-D float tensor `entry`, checked (FromTensor's checks first).
+  std::vector<float> CheckedTensor(torch::serialize::InputArchive& archive,
+                                   const char* entry) const {
+    at::Tensor tensor;
+    archive.read(entry, tensor);
+    std::vector<float> values = FromTensor(tensor, entry);
+    Check(entry, values);
+    return values;
   }
 
  private:
@@ -194,20 +209,15 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
       throw UserError("not a RECON checkpoint (format is not " + std::string(kFormat) + ")");
     }
     const Digests digests(archive);
-    c.network = NetworkConfigFromJson(digests.Check("network", ReadString(archive, "network")));
-    c.train = TrainConfigFromJson(digests.Check("train", ReadString(archive, "train")));
-    c.spec = DataSpecFromJson(digests.Check("spec", ReadString(archive, "spec")));
-    StateFromJson(digests.Check("state", ReadString(archive, "state")), c.state, c.fingerprint);
-    at::Tensor tensor;
-    archive.read("params", tensor);
-    c.state.params = digests.Check("params", FromTensor(tensor, "params"));
-    archive.read("target_scaling", tensor);
-    c.scaling = digests.Check("target_scaling", FromTensor(tensor, "target_scaling"));
+    c.network = NetworkConfigFromJson(digests.CheckedString(archive, "network"));
+    c.train = TrainConfigFromJson(digests.CheckedString(archive, "train"));
+    c.spec = DataSpecFromJson(digests.CheckedString(archive, "spec"));
+    StateFromJson(digests.CheckedString(archive, "state"), c.state, c.fingerprint);
+    c.state.params = digests.CheckedTensor(archive, "params");
+    c.scaling = digests.CheckedTensor(archive, "target_scaling");
     if (with_optimizer) {
-      archive.read("exp_avg", tensor);
-      c.state.exp_avg = digests.Check("exp_avg", FromTensor(tensor, "exp_avg"));
-      archive.read("exp_avg_sq", tensor);
-      c.state.exp_avg_sq = digests.Check("exp_avg_sq", FromTensor(tensor, "exp_avg_sq"));
+      c.state.exp_avg = digests.CheckedTensor(archive, "exp_avg");
+      c.state.exp_avg_sq = digests.CheckedTensor(archive, "exp_avg_sq");
     }
   } catch (const UserError& e) {
     throw UserError("checkpoint '" + path + "': " + e.what());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <ctime>
+#include <set>
 
 #include "engine/core/error.h"
 #include "engine/store/h5.h"
@@ -215,6 +216,14 @@ void ReadStateAndObservations(const h5::File& file, hid_t root, const SessionMan
   ReadBeacons(file, root, layout, rows);
 }
 
+// The datasets ReadStateAndObservations reads, relative to the episode's group.
+std::set<std::string> StateAndObservationNames(const SessionManifest& layout) {
+  std::set<std::string> names = {std::string("obs/") + kRobotStateKey,
+                                 "obs/" + ObservationKey(layout)};
+  for (const BeaconSpec& beacon : layout.beacons) names.insert("obs/" + BeaconKey(beacon.name));
+  return names;
+}
+
 template <typename Row>
 void WriteStateAndObservations(const h5::File& file, hid_t root, const SessionManifest& layout,
                                const std::vector<Row>& rows, const char* group = "obs") {
@@ -345,7 +354,6 @@ DemoRecord ReadDemoGroup(const h5::File& file, hid_t group, const SessionManifes
   DemoRecord record;
   record.meta = ReadEpisodeMeta(file, group);
   if (record.meta.kind != "demo") h5::Fail(file.path(), "holds play data, not a demonstration");
-  h5::VerifyChecksums(file, group);  // also what no field below reads (states, dones)
   const hsize_t n = static_cast<hsize_t>(record.meta.num_samples);
   std::vector<Sample>& samples = record.episode.samples;
   samples.resize(n);
@@ -358,6 +366,9 @@ DemoRecord ReadDemoGroup(const h5::File& file, hid_t group, const SessionManifes
   CheckShape(file, group, "rewards", {n});
   const std::vector<float> rewards = h5::ReadFloats(file, group, "rewards");
   record.rewards.assign(rewards.begin(), rewards.end());
+  std::set<std::string> read = StateAndObservationNames(layout);
+  read.insert({"actions", "rewards"});
+  h5::VerifyChecksums(file, group, read);  // what nothing above reads: states, dones, next_obs
   return record;
 }
 
@@ -365,9 +376,9 @@ PlayRecord ReadPlayGroup(const h5::File& file, hid_t group, const SessionManifes
   PlayRecord record;
   record.meta = ReadEpisodeMeta(file, group);
   if (record.meta.kind != "play") h5::Fail(file.path(), "holds a demonstration, not play data");
-  h5::VerifyChecksums(file, group);  // also what no field below reads (states, dones)
   record.samples.resize(static_cast<size_t>(record.meta.num_samples));
   ReadStateAndObservations(file, group, layout, record.samples);
+  h5::VerifyChecksums(file, group, StateAndObservationNames(layout));  // anything else in it
   return record;
 }
 

@@ -302,7 +302,7 @@ herr_t CollectDatasetNames(hid_t group, const char* name, const H5L_info_t* /*in
 
 }  // namespace
 
-void VerifyChecksums(const File& file, hid_t location) {
+void VerifyChecksums(const File& file, hid_t location, const std::set<std::string>& already_read) {
   SilenceAutomaticErrorPrinting();
   std::vector<std::string> names;
   if (H5Lvisit(location, H5_INDEX_NAME, H5_ITER_INC, CollectDatasetNames, &names) < 0) {
@@ -310,6 +310,7 @@ void VerifyChecksums(const File& file, hid_t location) {
   }
   std::vector<char> buffer;
   for (const std::string& name : names) {
+    if (already_read.count(name) > 0) continue;
     const Handle dataset = OpenDataset(file, location, name);
     const Handle type(H5Dget_type(dataset.id()));
     if (!HasChecksum(dataset.id()) || H5Tget_class(type.id()) == H5T_STRING) continue;

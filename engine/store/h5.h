@@ -8,6 +8,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -75,10 +76,12 @@ std::vector<std::string> ListChildren(const File& file, hid_t group);
 /// each chunk with a Fletcher-32 checksum that every read verifies.
 void WriteArray(const File& file, hid_t location, const std::string& name, ElementType type,
                 const std::vector<hsize_t>& dims, const void* data);
-/// Reads every checksummed dataset under `location` (strings aside): UserError naming the file
-/// and the first dataset whose data does not match its checksum. For datasets a reader does not
-/// otherwise load (robomimic's `states`, `dones`), so that no damage passes unseen.
-void VerifyChecksums(const File& file, hid_t location);
+/// Reads every checksummed dataset under `location` (strings aside) but those in `already_read`
+/// (paths relative to `location`, which the caller read itself, and so verified): UserError
+/// naming the file and the first dataset whose data does not match its checksum. For datasets a
+/// reader does not otherwise load (robomimic's `states`, `dones`), so that no damage passes
+/// unseen, without reading the others twice.
+void VerifyChecksums(const File& file, hid_t location, const std::set<std::string>& already_read);
 /// The dimensions of a dataset. UserError naming `file` and `name` if it is missing.
 std::vector<hsize_t> Dimensions(const File& file, hid_t location, const std::string& name);
 /// True when the dataset stores 8-bit unsigned integers (images as robomimic keeps them).
