@@ -19,6 +19,15 @@ std::string TemporarySibling(const std::string& path) {
   return path + ".tmp." + std::to_string(getpid());
 }
 
+std::string NameTheTarget(std::string message, const std::string& tmp, const std::string& target) {
+  if (tmp.empty()) return message;
+  for (size_t at = message.find(tmp); at != std::string::npos;
+       at = message.find(tmp, at + target.size())) {
+    message.replace(at, tmp.size(), target);
+  }
+  return message;
+}
+
 bool IsTemporaryOfDeadWriter(const std::string& file_name) {
   const size_t at = file_name.rfind(".tmp.");
   if (at == std::string::npos) return false;
@@ -56,28 +65,37 @@ void ReplaceFile(const std::string& from, const std::string& to) {
   }
 }
 
-void WriteFileAtomically(const std::string& path, const std::string& content) {
-  RemoveDeadTemporariesOf(path);
-  const std::string tmp = TemporarySibling(path);
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+void WriteWholeFile(const std::string& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw UserError("cannot write " + path + ": " + std::strerror(errno));
+  auto fail = [&](bool close_it) {
+    const std::string reason = std::strerror(errno);
+    if (close_it) ::close(fd);
+    std::remove(path.c_str());
+    throw UserError("cannot write " + path + ": " + reason);
+  };
   size_t written = 0;
   while (written < content.size()) {
     const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      std::remove(tmp.c_str());
-      throw UserError("cannot write " + path + ": " + reason);
+      fail(true);
     }
     written += static_cast<size_t>(n);
   }
-  // fsync so that after a power loss the rename never points at an empty file.
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    const std::string reason = std::strerror(errno);
+  if (::close(fd) != 0) fail(false);
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  RemoveDeadTemporariesOf(path);
+  const std::string tmp = TemporarySibling(path);
+  try {
+    WriteWholeFile(tmp, content);
+    // fsync so that after a power loss the rename never points at an empty file.
+    SyncFile(tmp);
+  } catch (const UserError& e) {
     std::remove(tmp.c_str());
-    throw UserError("cannot write " + path + ": " + reason);
+    throw UserError(NameTheTarget(e.what(), tmp, path));
   }
   ReplaceFile(tmp, path);
 }

@@ -9,6 +9,11 @@ namespace recon {
 /// the path if it cannot be written.
 void WriteFileAtomically(const std::string& path, const std::string& content);
 
+/// Writes `content` to `path` in place (created or truncated), without a rename: for files
+/// that are themselves temporaries. On failure the part written is removed and a UserError says
+/// "cannot write <path>: <the system's reason>".
+void WriteWholeFile(const std::string& path, const std::string& content);
+
 /// Creates `dir` (and parents) if needed and checks that a file can be created in it. Throws
 /// UserError naming the folder otherwise. Call before long work so it fails fast.
 void EnsureWritableDirectory(const std::string& dir);
@@ -16,6 +21,10 @@ void EnsureWritableDirectory(const std::string& dir);
 /// A path of a temporary file next to `path` (same folder, so rename is atomic):
 /// "<path>.tmp.<pid of the writer>".
 std::string TemporarySibling(const std::string& path);
+
+/// `message` with every mention of the temporary `tmp` replaced by the file it stands for, so a
+/// failed write names what the user asked for ("cannot write demo_3.h5: No space left on device").
+std::string NameTheTarget(std::string message, const std::string& tmp, const std::string& target);
 
 /// True when `file_name` is a TemporarySibling whose writer process no longer runs (it was
 /// killed before its rename): such a file is garbage and may be removed.

@@ -232,7 +232,11 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
 
 void Trainer::SaveCheckpoint(const std::string& path) const {
   const TrainerState s = impl_->State();
-  const std::string temp = TemporarySibling(path);
+  // The archive is built in memory and written by WriteFileAtomically (temporary, fsync,
+  // rename): Torch's own file writer aborts the process when the disk fills (its destructor
+  // throws while an exception is in flight), and a crash must leave the old checkpoint or the
+  // new one, never a half-written file or a temporary.
+  std::ostringstream bytes;
   try {
     torch::serialize::OutputArchive archive;
     json digests;
@@ -254,13 +258,17 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
     write_tensor("exp_avg", s.exp_avg);
     write_tensor("exp_avg_sq", s.exp_avg_sq);
     archive.write("digests", c10::IValue(digests.dump()));
-    archive.save_to(temp);
-    // rename() replaces the old file atomically: a crash leaves the old or the new checkpoint.
-    std::filesystem::rename(temp, path);
+    archive.save_to(bytes);
   } catch (const std::exception& e) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
     throw UserError("cannot write checkpoint '" + path + "': " + FirstLine(e.what()));
+  }
+  try {
+    WriteFileAtomically(path, bytes.str());
+  } catch (const UserError& e) {
+    // "cannot write <path>: <reason>" becomes "cannot write checkpoint '<path>': <reason>".
+    const std::string plain = "cannot write " + path + ": ", what = e.what();
+    const std::string reason = what.rfind(plain, 0) == 0 ? what.substr(plain.size()) : what;
+    throw UserError("cannot write checkpoint '" + path + "': " + reason);
   }
 }
 

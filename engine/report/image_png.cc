@@ -28,11 +28,20 @@ void WritePng(const RgbImage& image, const std::string& path) {
     }
   }
   cairo_surface_mark_dirty(surface.get());
-  const std::string temporary = TemporarySibling(path);
-  if (cairo_surface_write_to_png(surface.get(), temporary.c_str()) != CAIRO_STATUS_SUCCESS) {
-    throw UserError("cannot write the image " + path);
+  // Encoded in memory and written by WriteFileAtomically, which says why a write failed (a full
+  // disk) and never leaves a temporary behind.
+  std::string png;
+  const cairo_status_t status = cairo_surface_write_to_png_stream(
+      surface.get(),
+      [](void* closure, const unsigned char* bytes, unsigned int length) {
+        static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(bytes), length);
+        return CAIRO_STATUS_SUCCESS;
+      },
+      &png);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw UserError("cannot encode the image " + path + ": " + cairo_status_to_string(status));
   }
-  ReplaceFile(temporary, path);
+  WriteFileAtomically(path, png);
 }
 
 }  // namespace recon::report

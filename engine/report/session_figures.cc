@@ -68,7 +68,10 @@ std::string WritePng(const Chart& chart, const std::string& report_dir, const st
   try {
     WriteChart(chart, path, kDrawScale * FigureFiles::kWidth, kDrawScale * FigureFiles::kHeight);
   } catch (const UserError& error) {
-    throw UserError("session report figure " + path + ": " + error.what());
+    // Write errors name the file already ("cannot write <path>: ..."); chart errors do not.
+    const std::string what = error.what();
+    if (what.find(path) != std::string::npos) throw;
+    throw UserError("session report figure " + path + ": " + what);
   }
   return path;
 }

@@ -4,6 +4,7 @@
 #include <string>
 #include <system_error>
 
+#include "engine/core/error.h"
 #include "engine/core/files.h"
 
 namespace recon::store {
@@ -31,6 +32,11 @@ void WriteFileVia(const std::string& path, Durability durability, const Write& w
     write(tmp);
     if (durability == Durability::kFsync) SyncFile(tmp);
     ReplaceFile(tmp, path);
+  } catch (const UserError& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    // The user knows the file they asked for, not our temporary beside it.
+    throw UserError(NameTheTarget(e.what(), tmp, path));
   } catch (...) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);

@@ -1,8 +1,11 @@
 #include "engine/store/h5.h"
 
 #include <algorithm>
+#include <cstring>
+#include <regex>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace recon::store::h5 {
 
@@ -168,32 +171,48 @@ void Handle::Reset() {
 
 File File::Create(const std::string& path) {
   SilenceAutomaticErrorPrinting();
-  // The 1.8 format (not "latest") so that h5py and HDF5 1.8 tools, which robomimic users may
-  // still have, can read what we write.
+  // At most the 1.8 format (not "latest") so that h5py and HDF5 1.8 tools, which robomimic
+  // users may still have, can read what we write. At least the earliest, not 1.8: HDF5 1.10's
+  // image of an in-memory file (below) carries a stale checksum in a 1.8 (version 2) superblock.
   Handle access(H5Pcreate(H5P_FILE_ACCESS));
-  H5Pset_libver_bounds(access.id(), H5F_LIBVER_V18, H5F_LIBVER_V18);
+  H5Pset_libver_bounds(access.id(), H5F_LIBVER_EARLIEST, H5F_LIBVER_V18);
+  // The file is built in memory (the core driver, no backing store) and written in one piece by
+  // Close. HDF5 1.10 does not survive a failing disk: after a write error (a full disk) its
+  // close fails, and closing the half-closed file again, or the library's own clean-up at exit,
+  // crashes the process. In memory, HDF5 never meets the disk; our own write says what failed.
+  H5Pset_fapl_core(access.id(), /*increment=*/size_t{1} << 20, /*backing_store=*/0);
+  H5Pset_fclose_degree(access.id(), H5F_CLOSE_STRONG);
   Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.id()));
   if (!file.valid()) Fail(path, "cannot create HDF5 file");
-  return File(std::move(file), path);
+  return File(std::move(file), path, /*writable=*/true);
 }
 
 File File::OpenReadOnly(const std::string& path) {
   SilenceAutomaticErrorPrinting();
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) Fail(path, "cannot open as HDF5 (missing, truncated or not an HDF5 file)");
-  return File(std::move(file), path);
+  return File(std::move(file), path, /*writable=*/false);
 }
 
 void File::Close() {
   if (!handle_.valid()) return;
   SilenceAutomaticErrorPrinting();
-  const herr_t flushed = H5Fflush(handle_.id(), H5F_SCOPE_LOCAL);
-  const herr_t closed = H5Fclose(handle_.id());
-  // The id is gone either way; do not close it again.
-  Handle released(H5I_INVALID_HID);
-  std::swap(released, handle_);
-  (void)released;
-  if (flushed < 0 || closed < 0) Fail(path_, "cannot write HDF5 file (disk full?)");
+  // Released first: whatever H5Fclose answers, the id must not be closed again by ~Handle.
+  const hid_t id = handle_.Release();
+  std::string image;
+  bool built = true;
+  if (writable_) {
+    built = H5Fflush(id, H5F_SCOPE_LOCAL) >= 0;
+    const ssize_t size = built ? H5Fget_file_image(id, nullptr, 0) : -1;
+    built = size > 0;
+    if (built) {
+      image.resize(static_cast<size_t>(size));
+      built = H5Fget_file_image(id, image.data(), image.size()) == size;
+    }
+  }
+  const bool closed = H5Fclose(id) >= 0;
+  if (!built || !closed) Fail(path_, "cannot build the HDF5 file");
+  if (writable_) WriteWholeFile(path_, image);
 }
 
 std::string LastErrorDetail() {
@@ -207,9 +226,33 @@ std::string LastErrorDetail() {
   return detail;
 }
 
+namespace {
+
+// The operating system's reason when HDF5 failed on a system call: its file driver reports
+// "..., errno = 28, error message = 'No space left on device', ...". 0 when there is none.
+int SystemErrorOf(const std::string& detail) {
+  static const std::regex kErrno("errno = ([0-9]+)");
+  std::smatch match;
+  if (!std::regex_search(detail, match, kErrno)) return 0;
+  return std::stoi(match[1].str());
+}
+
+std::string AllMessages() {
+  std::vector<std::string> messages;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, CollectMessage, &messages);
+  std::string all;
+  for (const std::string& m : messages) all += m + "\n";
+  return all;
+}
+
+}  // namespace
+
 void Fail(const std::string& file, const std::string& what) {
+  const int system_error = SystemErrorOf(AllMessages());
   const std::string detail = LastErrorDetail();
   H5Eclear2(H5E_DEFAULT);
+  // A full disk or a read-only medium is said in the system's plain words, not HDF5's stack.
+  if (system_error != 0) throw UserError(file + ": " + what + ": " + std::strerror(system_error));
   throw UserError(file + ": " + what + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
 }
 

@@ -29,6 +29,13 @@ class Handle {
   hid_t id() const { return id_; }
   bool valid() const { return id_ >= 0; }
   void Reset();
+  /// Gives up ownership without closing: the caller has closed the id (or HDF5 refused to, and
+  /// a second close of a file whose first close failed crashes the library).
+  hid_t Release() {
+    const hid_t id = id_;
+    id_ = H5I_INVALID_HID;
+    return id;
+  }
 
  private:
   hid_t id_ = H5I_INVALID_HID;
@@ -37,7 +44,7 @@ class Handle {
 /// An open HDF5 file with its path, which every error message names.
 class File {
  public:
-  /// Creates (truncating) a file for writing. UserError naming the path on failure.
+  /// Creates a file for writing; nothing reaches `path` before Close.
   static File Create(const std::string& path);
   /// Opens an existing file read-only. UserError naming the path when it is missing, truncated
   /// or not HDF5.
@@ -45,14 +52,18 @@ class File {
 
   hid_t id() const { return handle_.id(); }
   const std::string& path() const { return path_; }
-  /// Flushes and closes; errors (a full disk) surface here as UserError rather than being lost
-  /// in a destructor.
+  /// Closes; a file made by Create is written to its path here, in one piece (it was built in
+  /// memory), so a full disk surfaces as a UserError naming the path and the system's reason
+  /// rather than being lost in a destructor. A created file destroyed without Close is never
+  /// written.
   void Close();
 
  private:
-  File(Handle handle, std::string path) : handle_(std::move(handle)), path_(std::move(path)) {}
+  File(Handle handle, std::string path, bool writable)
+      : handle_(std::move(handle)), path_(std::move(path)), writable_(writable) {}
   Handle handle_;
   std::string path_;
+  bool writable_ = false;
 };
 
 /// The element types the store writes.

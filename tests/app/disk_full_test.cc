@@ -1,0 +1,309 @@
+// A full disk, for every command that writes. Each command runs on a small file system of its own
+// (a tmpfs mounted in a private mount namespace, so nothing outside the test sees it) holding a
+// copy of a session and a filler file that leaves a given number of bytes free. The free sizes
+// walk from nothing to just short of what the command writes (measured by a first run with room
+// to spare), so the disk fills at a different write each time: the first episode, the manifest,
+// the index, a checkpoint, a training record, a replay, a figure, an export. After every run:
+//   - the command succeeded, or it exited 2 saying "No space left on device" about a file the
+//     user knows (never our temporary's name), and never crashed;
+//   - no temporary is left behind;
+//   - every file is either as it was or complete (HDF5 files pass their checksums, checkpoints
+//     load, JSON parses, images and pages end where they should);
+//   - the session still opens and no episode reads as damaged.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "engine/learn/learner.h"
+#include "engine/store/h5.h"
+#include "tests/app/run_recon.h"
+
+namespace recon {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing::CommandResult;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using testing::RunCommand;
+using testing::RunRecon;
+
+// Room to spare on the small file system beyond the session's copy, for the first run.
+constexpr uint64_t kPlenty_bytes = 96ull << 20;
+constexpr uint64_t kPage_bytes = 4096;
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Every regular file under `dir`, by relative path, with its bytes.
+std::map<std::string, std::string> Snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  if (!fs::exists(dir)) return files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file()) {
+      files[fs::relative(entry.path(), dir).string()] = ReadBytes(entry.path());
+    }
+  }
+  return files;
+}
+
+uint64_t DirectoryBytes(const fs::path& dir) {
+  uint64_t total = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file()) total += entry.file_size();
+  }
+  return total;
+}
+
+bool EndsWith(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// Why `path` is not a complete file of its kind, or "" when it is.
+std::string Incomplete(const fs::path& path) {
+  const std::string name = path.filename().string();
+  const std::string ext = path.extension().string();
+  try {
+    if (ext == ".h5" || ext == ".hdf5") {
+      store::h5::File file = store::h5::File::OpenReadOnly(path.string());
+      store::h5::VerifyChecksums(file, file.id(), {});
+      file.Close();
+    } else if (ext == ".ckpt") {
+      (void)learn::LoadPolicy(path.string());
+    } else if (ext == ".json") {
+      const json parsed = json::parse(ReadBytes(path));
+      if (parsed.is_discarded()) return "unparsable JSON";
+    } else if (ext == ".png") {
+      // A PNG ends with its IEND chunk (the name and its CRC).
+      const std::string bytes = ReadBytes(path);
+      if (!EndsWith(bytes, std::string("IEND\xae\x42\x60\x82", 8))) return "a PNG cut short";
+    } else if (ext == ".html") {
+      if (!EndsWith(ReadBytes(path), "</html>\n")) return "a page cut short";
+    } else if (name == ".lock") {
+      return "";
+    } else {
+      return "a file of a kind this test does not know (" + name + ")";
+    }
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+/// The file system a run left: its copy, the command's output and exit code.
+struct FullDiskRun {
+  CommandResult result;
+  fs::path root;  ///< a copy of the small file system after the run (the filler removed)
+};
+
+/// One small file system: a session at ROOT/s and whatever `extra` holds at ROOT/extra.
+class SmallDisk {
+ public:
+  SmallDisk(fs::path session, fs::path extra, fs::path work)
+      : session_(std::move(session)), extra_(std::move(extra)), work_(std::move(work)) {}
+
+  /// Runs `recon args` with `free_bytes` left free after `prepare` (a shell line run in the
+  /// small file system first). In `args` and `prepare`, @S is the session and @R the root.
+  FullDiskRun Run(const std::string& args, uint64_t free_bytes, const std::string& prepare = "",
+                  const std::string& label = "") {
+    const fs::path out = work_ / ("run_" + label + std::to_string(runs_++));
+    fs::remove_all(out);
+    const fs::path script = work_ / "run.sh";
+    std::ofstream(script) << R"sh(set -u
+m=$(mktemp -d /tmp/recon_disk_full.XXXXXX)
+trap 'umount "$m" 2>/dev/null; rmdir "$m" 2>/dev/null' EXIT
+mount -t tmpfs -o size=$SIZE tmpfs "$m" || { echo "cannot mount a tmpfs (the test needs root or a user namespace)"; exit 90; }
+cp -a "$SESSION" "$m/s"
+if [ -d "$EXTRA" ]; then cp -a "$EXTRA" "$m/extra"; fi
+sub() { local t=${1//@S/$m/s}; echo "${t//@R/$m}"; }
+eval "$(sub "$PREPARE")"
+avail=$(( $(stat -f -c '%a*%S' "$m") ))
+if [ "$avail" -gt "$FREE" ]; then fallocate -l $(( avail - FREE )) "$m/filler" || exit 91; fi
+eval "\"$RECON\" $(sub "$ARGS")" > "$OUT.output" 2>&1
+echo $? > "$OUT.rc"
+sed -i "s#$m#<root>#g" "$OUT.output"
+rm -f "$m/filler"
+cp -a "$m" "$OUT"
+)sh";
+    const uint64_t size = DirectoryBytes(session_) +
+                          (fs::exists(extra_) ? DirectoryBytes(extra_) : 0) + kPlenty_bytes;
+    const std::string env = "SIZE=" + std::to_string(size) + " SESSION='" + session_.string() +
+                            "' EXTRA='" + extra_.string() + "' FREE=" + std::to_string(free_bytes) +
+                            " OUT='" + out.string() + "' RECON='" + RECON_CLI + "' ARGS='" + args +
+                            "' PREPARE='" + prepare + "'";
+    const CommandResult shell =
+        RunCommand(env + " unshare --mount --propagation private bash " + script.string());
+    FullDiskRun run;
+    run.root = out;
+    if (!fs::exists(out.string() + ".rc")) {
+      run.result = {-1, "the small file system could not be set up: " + shell.output};
+      return run;
+    }
+    run.result.exit_code = std::stoi(ReadBytes(out.string() + ".rc"));
+    run.result.output = ReadBytes(out.string() + ".output");
+    return run;
+  }
+
+ private:
+  fs::path session_, extra_, work_;
+  int runs_ = 0;
+};
+
+/// Each test gets a folder of its own and two sessions: a Dynamic 2D one (3 demonstrations,
+/// play data, both methods trained and evaluated) and a tabletop one with camera images.
+class DiskFullTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::path("/tmp") / ("disk_full_test_" + std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "extra");
+  }
+  static void TearDownTestSuite() { fs::remove_all(root_); }
+
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    work_ = root_ / test;
+    fs::create_directories(work_);
+  }
+
+  /// Runs `args` once with room to spare (it must succeed), then with the disk filling at points
+  /// spread over what that run wrote, checking the invariants above after each.
+  void WalkFreeSpace(const fs::path& session, const std::string& args,
+                     const std::string& prepare = "") {
+    SmallDisk disk(session, root_ / "extra", work_);
+    const std::map<std::string, std::string> before = Snapshot(session);
+    const FullDiskRun roomy = disk.Run(args, kPlenty_bytes / 2, prepare, "roomy_");
+    ASSERT_EQ(roomy.result.exit_code, 0) << args << "\n" << roomy.result.output;
+    // What the command writes: every file new or changed in the session, and beside it.
+    uint64_t written = 0;
+    for (const auto& [name, bytes] : Snapshot(roomy.root)) {
+      const std::string in_session = name.rfind("s/", 0) == 0 ? name.substr(2) : "";
+      const auto old = before.find(in_session);
+      if (name.rfind("extra/", 0) == 0) continue;
+      if (old == before.end() || old->second != bytes) written += bytes.size();
+    }
+    ASSERT_GT(written, 0u) << args << " wrote nothing";
+    std::set<uint64_t> free_sizes = {0, kPage_bytes};
+    for (int eighth = 1; eighth < 8; ++eighth) {
+      free_sizes.insert(written * eighth / 8 / kPage_bytes * kPage_bytes);
+    }
+    int failures = 0;
+    for (const uint64_t free_bytes : free_sizes) {
+      SCOPED_TRACE(args + " with " + std::to_string(free_bytes) + " bytes free (" +
+                   std::to_string(written) + " written with room to spare)");
+      const FullDiskRun run = disk.Run(args, free_bytes, prepare);
+      const CommandResult& r = run.result;
+      ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 2) << r.output;
+      if (r.exit_code == 2) {
+        ++failures;
+        EXPECT_THAT(r.output, HasSubstr("No space left on device"));
+        EXPECT_THAT(r.output, Not(HasSubstr(".tmp.")));
+      }
+      for (const auto& [name, bytes] : Snapshot(run.root)) {
+        EXPECT_EQ(name.find(".tmp."), std::string::npos) << "a temporary was left: " << name;
+        EXPECT_EQ(name.find(".partial"), std::string::npos) << "a temporary was left: " << name;
+        EXPECT_EQ(name.find(".importing."), std::string::npos) << "a staging folder: " << name;
+        const std::string in_session = name.rfind("s/", 0) == 0 ? name.substr(2) : "";
+        const auto old = before.find(in_session);
+        if (old != before.end() && old->second == bytes) continue;
+        EXPECT_EQ(Incomplete(run.root / name), "") << name;
+      }
+      if (fs::exists(run.root / "s" / "session.json")) {
+        const CommandResult info =
+            RunRecon("session info " + (run.root / "s").string() + " --json");
+        ASSERT_EQ(info.exit_code, 0) << info.output;
+        const json summary = json::parse(info.output.substr(info.output.find('{')));
+        EXPECT_TRUE(summary.value("damaged", json::array()).empty()) << info.output;
+      }
+    }
+    // The walk must have reached the disk: with nothing free, every command here fails.
+    EXPECT_GT(failures, 0) << args << " never ran out of space";
+  }
+
+  // The sessions are made on first use (ctest runs each test in a process of its own).
+  static fs::path Dynamic() {
+    const fs::path dir = root_ / "dynamic2d";
+    const std::string d = dir.string();
+    if (!fs::exists(dir)) {
+      MakeSession({"record --session " + d + " --world dynamic2d --demos 3 --play 4 --seed 3",
+                   "train --session " + d + " --methods baseline,recon --steps 50",
+                   "eval --session " + d + " --tests 3",
+                   "session export " + d + " --out " + (root_ / "extra" / "export.hdf5").string()});
+    }
+    return dir;
+  }
+  static fs::path Tabletop() {
+    const fs::path dir = root_ / "tabletop";
+    const std::string d = dir.string();
+    if (!fs::exists(dir)) {
+      MakeSession({"record --session " + d + " --world tabletop --demos 2 --play 2 --seed 2",
+                   "train --session " + d + " --methods baseline --steps 20"});
+    }
+    return dir;
+  }
+  static void MakeSession(const std::vector<std::string>& lines) {
+    for (const std::string& line : lines) {
+      const CommandResult r = RunRecon(line);
+      ASSERT_EQ(r.exit_code, 0) << line << "\n" << r.output;
+    }
+  }
+
+  static fs::path root_;
+  fs::path work_;
+};
+
+fs::path DiskFullTest::root_;
+
+TEST_F(DiskFullTest, RecordingMoreDemonstrations) {
+  WalkFreeSpace(Dynamic(), "record --session @S --demos 2 --play 2");
+}
+
+TEST_F(DiskFullTest, RecordingCameraEpisodes) {
+  WalkFreeSpace(Tabletop(), "record --session @S --demos 2 --play 2");
+}
+
+TEST_F(DiskFullTest, Training) {
+  WalkFreeSpace(Dynamic(), "train --session @S --methods baseline,recon --steps 50");
+}
+
+TEST_F(DiskFullTest, EvaluatingWithReplays) {
+  WalkFreeSpace(Tabletop(), "eval --session @S --tests 1");
+}
+
+TEST_F(DiskFullTest, TheReport) { WalkFreeSpace(Dynamic(), "report @S"); }
+
+TEST_F(DiskFullTest, Export) { WalkFreeSpace(Dynamic(), "session export @S --out @R/out.hdf5"); }
+
+TEST_F(DiskFullTest, Import) {
+  WalkFreeSpace(Dynamic(), "session import @R/extra/export.hdf5 --session @R/imported");
+}
+
+TEST_F(DiskFullTest, MarkingAnEpisode) {
+  WalkFreeSpace(Dynamic(), "session mark @S demo_1 --bad --note \"fell over\"");
+}
+
+TEST_F(DiskFullTest, RepairingALostManifest) {
+  WalkFreeSpace(Dynamic(), "session repair @S --world dynamic2d --seed 3", "rm @S/session.json");
+}
+
+TEST_F(DiskFullTest, Calibration) {
+  WalkFreeSpace(Dynamic(), "calibrate --sim --points 6 --out @R/calibration.json");
+}
+
+}  // namespace
+}  // namespace recon
