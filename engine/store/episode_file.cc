@@ -5,7 +5,9 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "engine/core/value_bounds.h"
 #include "engine/store/h5.h"
+#include "engine/worlds/physical_bounds.h"
 
 namespace recon::store {
 
@@ -123,12 +125,39 @@ void WriteMeta(const h5::File& file, hid_t root, const EpisodeMeta& meta, int64_
   h5::WriteAttribute(file, root, "recon_succeeded", static_cast<int64_t>(meta.succeeded));
 }
 
+void CheckWithin(const std::vector<ValueRange>& ranges, const std::vector<float>& values,
+                 size_t index, const char* field, const std::string& path) {
+  const std::string problem = OutOfBounds(ranges, values, field);
+  if (!problem.empty()) {
+    throw UserError(path + ": sample " + std::to_string(index) + " " + problem +
+                    "; no robot of this cell records that (a damaged or edited file?)");
+  }
+}
+
+// The u of a demonstration's sample; play samples have none.
+void CheckActions(const Sample& sample, const DataSpec& spec, const ValueBounds& bounds,
+                  size_t index, const std::string& path) {
+  CheckSample(sample.u, spec.u_dim, index, "u", path);
+  CheckWithin(bounds.u, sample.u, index, "u", path);
+}
+void CheckActions(const PlaySample&, const DataSpec&, const ValueBounds&, size_t,
+                  const std::string&) {}
+
+/// Shapes, finiteness and the world's physical bounds of every row, before a file is written
+/// and after one is read: a value no robot of the session's world records is refused either way.
 template <typename Row>
-void CheckRows(const std::vector<Row>& rows, const DataSpec& spec, const std::string& path) {
+void CheckRows(const std::vector<Row>& rows, const SessionManifest& layout,
+               const std::string& path) {
+  const DataSpec& spec = layout.spec;
+  const ValueBounds bounds = worlds::PhysicalBounds(layout.world, spec);
   for (size_t i = 0; i < rows.size(); ++i) {
     CheckSample(rows[i].x, spec.x_dim, i, "x", path);
     CheckSample(rows[i].y, static_cast<size_t>(spec.YSize()), i, "y", path);
     CheckSample(rows[i].b, spec.b_dim, i, "b", path);
+    CheckWithin(bounds.x, rows[i].x, i, "x", path);
+    CheckWithin(bounds.y, rows[i].y, i, "y", path);
+    CheckWithin(bounds.b, rows[i].b, i, "b", path);
+    CheckActions(rows[i], spec, bounds, i, path);
   }
 }
 
@@ -248,10 +277,7 @@ void WriteDemoGroup(const h5::File& file, hid_t group, const SessionManifest& la
   const std::vector<Sample>& samples = record.episode.samples;
   const std::string& path = file.path();
   if (samples.empty()) throw UserError(path + ": a demonstration needs at least one sample");
-  CheckRows(samples, layout.spec, path);
-  for (size_t i = 0; i < samples.size(); ++i) {
-    CheckSample(samples[i].u, layout.spec.u_dim, i, "u", path);
-  }
+  CheckRows(samples, layout, path);
   if (!record.rewards.empty() && record.rewards.size() != samples.size()) {
     throw UserError(path + ": " + std::to_string(record.rewards.size()) + " rewards for " +
                     std::to_string(samples.size()) + " samples");
@@ -284,7 +310,7 @@ void WritePlayGroup(const h5::File& file, hid_t group, const SessionManifest& la
   if (record.samples.empty()) {
     throw UserError(file.path() + ": a play chunk needs at least one sample");
   }
-  CheckRows(record.samples, layout.spec, file.path());
+  CheckRows(record.samples, layout, file.path());
   WriteMeta(file, group, record.meta, static_cast<int64_t>(record.samples.size()));
   WriteStateAndObservations(file, group, layout, record.samples);
 }
@@ -369,6 +395,7 @@ DemoRecord ReadDemoGroup(const h5::File& file, hid_t group, const SessionManifes
   std::set<std::string> read = StateAndObservationNames(layout);
   read.insert({"actions", "rewards"});
   h5::VerifyChecksums(file, group, read);  // what nothing above reads: states, dones, next_obs
+  CheckRows(samples, layout, file.path());
   return record;
 }
 
@@ -379,6 +406,7 @@ PlayRecord ReadPlayGroup(const h5::File& file, hid_t group, const SessionManifes
   record.samples.resize(static_cast<size_t>(record.meta.num_samples));
   ReadStateAndObservations(file, group, layout, record.samples);
   h5::VerifyChecksums(file, group, StateAndObservationNames(layout));  // anything else in it
+  CheckRows(record.samples, layout, file.path());
   return record;
 }
 

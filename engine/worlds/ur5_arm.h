@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/worlds/mujoco_model.h"
+#include "engine/worlds/physical_bounds.h"
 
 namespace recon::worlds {
 
@@ -32,7 +33,7 @@ using Ur5Joints = std::array<double, 6>;
 class Ur5Arm {
  public:
   static constexpr int kJoints = 6;
-  static constexpr double kMaxJointSpeed_rad_s = 3.14159265358979;
+  static constexpr double kMaxJointSpeed_rad_s = kUr5MaxJointSpeed_rad_s;
   /// A pose above the table with the tool pointing down: the arm's home and the IK's default seed.
   static constexpr Ur5Joints kHome = {3.14159265358979, -1.9, 1.9, -1.5708, -1.5708, 0.0};
 
