@@ -91,6 +91,9 @@ void AddLosses(const json& training, report::SessionReport& r) {
              std::to_string(t.value("seed", uint64_t{0})) + ", " +
              Fixed(t.value("seconds", 0.0), 1) + " s, " +
              std::to_string(t.value("train_demos", 0)) + " demonstrations";
+    if (t.contains("out_of_date") && t["out_of_date"].is_string()) {
+      h.out_of_date = t["out_of_date"].get<std::string>();
+    }
     r.losses.push_back(h);
   }
 }
@@ -163,6 +166,9 @@ void AddRollouts(const json& rollouts, report::SessionReport& r) {
                    " test scenarios with the beacons removed, "
                    "seeds derived from " +
                    std::to_string(e.value("seed", uint64_t{0}));
+    if (e.contains("out_of_date") && e["out_of_date"].is_string()) {
+      rollout.out_of_date = e["out_of_date"].get<std::string>();
+    }
     r.rollouts.push_back(rollout);
   }
 }

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "app/cli/result_staleness.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 
@@ -149,6 +150,17 @@ json SessionInfoJson(const store::Session& session) {
                {"teaching_time", TeachingLedgerJson(session)},
                {"training", ResultsIn(session, "training")},
                {"rollouts", ResultsIn(session, "rollouts")}};
+  // Each result says whether it still describes the session (result_staleness.h).
+  for (auto& [method, t] : info["training"].items()) {
+    const std::string why = TrainingStaleness(session, t);
+    t["out_of_date"] = why.empty() ? json(nullptr) : json(why);
+  }
+  for (auto& [method, r] : info["rollouts"].items()) {
+    const json none;
+    const json& trained = info["training"].contains(method) ? info["training"][method] : none;
+    const std::string why = RolloutStaleness(session, r, trained);
+    r["out_of_date"] = why.empty() ? json(nullptr) : json(why);
+  }
   info["calibration"] = nullptr;
   if (!m.calibration_file.empty()) {
     const calib::CalibrationReport cal =
@@ -209,6 +221,9 @@ std::string SessionInfoText(const store::Session& session, const json& info) {
   for (const auto& [method, t] : info["training"].items()) {
     out << "  trained:        " << method << ": " << t.value("steps", 0) << " steps, final loss "
         << Format("%.4g", t["final"].value("total_loss", 0.0)) << "\n";
+    if (t.contains("out_of_date") && t["out_of_date"].is_string()) {
+      out << "  OUT OF DATE:    " << method << ": " << t["out_of_date"].get<std::string>() << "\n";
+    }
   }
   for (const auto& [method, r] : info["rollouts"].items()) {
     out << "  rolled out:     " << method << ": " << r.value("metric_name", std::string("metric"))
@@ -217,6 +232,10 @@ std::string SessionInfoText(const store::Session& session, const json& info) {
       out << ", success " << Format("%.0f", 100.0 * r.value("success_rate", 0.0)) << "%";
     }
     out << " over " << r.value("tests", 0) << " scenarios\n";
+    if (r.contains("out_of_date") && r["out_of_date"].is_string()) {
+      out << "  OUT OF DATE:    " << method << " rollouts: " << r["out_of_date"].get<std::string>()
+          << "\n";
+    }
   }
   return out.str();
 }

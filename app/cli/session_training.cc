@@ -64,6 +64,14 @@ double ActionMse(const learn::Policy& policy, const Dataset& data) {
   return sum / static_cast<double>(count);
 }
 
+/// Names one training run: the wall clock in nanoseconds and the seed, so two trainings of the
+/// same method never share it, even with the same seed within a second.
+std::string NewModelId(uint64_t seed) {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  return std::to_string(std::chrono::duration_cast<std::chrono::nanoseconds>(now).count()) + "-" +
+         std::to_string(seed);
+}
+
 }  // namespace
 
 SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
@@ -88,6 +96,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
   options.include_bad = flags.include_bad;
   options.include_play = recon && !!flags.use_play;
   const Dataset data = session.LoadDataset(options);
+  const std::vector<std::string> trained_on = session.DatasetEpisodeNames(options);
   if (data.demos.empty()) {
     throw UserError("session " + session.dir() +
                     " has no demonstrations to train on (record some with `recon record`, or "
@@ -174,6 +183,13 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"train_samples", data.NumDemoSamples()},
       {"play_samples", data.play.size()},
       {"valid_demos", valid.demos.size()},
+      // What the session's results are checked against later (result_staleness.h): which
+      // episodes this model learnt from, chosen how, and which training this was.
+      {"trained_on",
+       {{"episodes", trained_on},
+        {"include_bad", options.include_bad},
+        {"use_play", recon && !!flags.use_play}}},
+      {"model_id", NewModelId(seed)},
       {"final",
        {{"action_loss", result.final_metrics.action_loss},
         {"beacon_loss", result.final_metrics.beacon_loss},
@@ -223,6 +239,10 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   const std::string label = trained && trained->is_object() && trained->contains("label")
                                 ? (*trained)["label"].get<std::string>()
                                 : method;
+  // Which training these rollouts belong to, so a retrained model marks them out of date.
+  const json model_id = trained && trained->is_object() && trained->contains("model_id")
+                            ? (*trained)["model_id"]
+                            : json(nullptr);
   // The replay goes first: once the JSON names it, it is there. A replay left from an earlier
   // evaluation would show other rollouts than the JSON describes, so it goes when none is kept.
   const fs::path replay_name = fs::path("rollouts") / (method + ".replay.h5");
@@ -246,6 +266,7 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   json record = {{"method", method},
                  {"label", label},
                  {"checkpoint", fs::path("checkpoints") / (method + ".ckpt")},
+                 {"model_id", model_id},
                  {"metric_name", probe->MetricName()},
                  {"metric_key", probe->MetricKey()},
                  {"higher_is_better", probe->HigherIsBetter()},

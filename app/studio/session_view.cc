@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
 #include "engine/calib/calibration.h"
 
@@ -120,6 +121,9 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     view.has_success = r->value("has_success", false);
     view.success_rate = r->value("success_rate", 0.0);
     view.tests = r->value("tests", 0);
+    const auto trained = cli::ReadJsonFile(
+        (fs::path(session.dir()) / "training" / (std::string(method) + ".json")).string());
+    view.out_of_date = cli::RolloutStaleness(session, *r, trained ? *trained : nlohmann::json());
     s.rollouts.push_back(view);
   }
   return s;

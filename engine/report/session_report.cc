@@ -87,6 +87,13 @@ std::string Missing(const std::string& what, const std::string& command_html) {
   return "<p class=\"missing\">" + Text(what) + ": " + command_html + ".</p>\n";
 }
 
+// A result that no longer matches the session, said where the result is shown.
+std::string OutOfDate(const std::string& label, const std::string& why) {
+  if (why.empty()) return "";
+  return "<p class=\"missing\"><strong>Out of date:</strong> " + Text(label) + ": " + Text(why) +
+         ".</p>\n";
+}
+
 std::string Note(const std::string& text) {
   return text.empty() ? "" : "<p class=\"note\">" + Text(text) + "</p>\n";
 }
@@ -165,6 +172,7 @@ Part Losses(const SessionReport& report, FigureFiles& figures) {
     rows.push_back({Text(run.label), FormatNumber(LastFinite(run.step)), last(run.total_loss),
                     last(run.action_loss), last(run.beacon_loss), last(run.play_loss), note});
   }
+  for (const auto& run : report.losses) part.body += OutOfDate(run.label, run.out_of_date);
   part.body += HtmlTable({"Run", "Last step", "Total", "Action", "Beacon", "Play", "Note"}, rows,
                          {1, 2, 3, 4, 5});
   part.body += Note("Loss columns show the last logged value of each term.");
@@ -261,6 +269,9 @@ Part Rollouts(const SessionReport& report, FigureFiles& figures) {
   }
   part.status = Count(report.rollouts.size(), "policy", "policies");
   part.body = "<p>Each trained policy was rolled out with the beacons removed.</p>\n";
+  for (const auto& rollout : report.rollouts) {
+    part.body += OutOfDate(rollout.label + " rollouts", rollout.out_of_date);
+  }
   const std::vector<BarChart> metric_charts = RolloutMetricCharts(report.rollouts);
   for (size_t i = 0; i < metric_charts.size(); ++i) {
     part.body += figures.Add(metric_charts[i], "rollouts_metric_" + std::to_string(i + 1),

@@ -24,6 +24,8 @@ struct SessionReport {
     /// One entry per logged step; beacon/play may be empty (the Baseline has no such heads).
     std::vector<double> step, action_loss, beacon_loss, play_loss, total_loss;
     std::string note;  ///< e.g. "6001 steps, seed 7, 41 s"
+    /// Why this run no longer matches the session's data (shown as a warning); empty if it does.
+    std::string out_of_date;
   };
   std::vector<LossHistory> losses;
 
@@ -60,6 +62,8 @@ struct SessionReport {
     double success_rate = 0, success_sem = 0;  ///< fractions in [0, 1]
     std::map<std::string, double> details;
     std::string note;  ///< e.g. "20 test scenarios, seeds ..."
+    /// Why these rollouts no longer describe the method's model (a warning); empty if they do.
+    std::string out_of_date;
   };
   std::vector<Rollout> rollouts;
 

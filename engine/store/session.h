@@ -117,6 +117,10 @@ class Session {
   PlayRecord ReadPlay(const std::string& name) const;
   /// Loads demonstrations (and play) into a training dataset. Episodes are read in number order.
   Dataset LoadDataset(const DatasetOptions& options = {}) const;
+  /// The episodes LoadDataset(options) reads, by name in order: demonstrations, then play
+  /// chunks. A model records them, so the session can tell when the data it would train on has
+  /// changed since (an episode recorded, deleted, marked bad or moved between splits).
+  std::vector<std::string> DatasetEpisodeNames(const DatasetOptions& options = {}) const;
 
   /// Rebuilds session.hdf5 (atomically).
   void RebuildIndex() const;

@@ -21,14 +21,34 @@ PlayRecord Session::ReadPlay(const std::string& name) const {
   return ReadPlayFile(e.path, manifest_);
 }
 
+namespace {
+
+bool InDataset(const EpisodeEntry& e, const DatasetOptions& options) {
+  if (e.flags.bad && !options.include_bad) return false;
+  if (options.split == Split::kTrain && e.flags.split != "train") return false;
+  if (options.split == Split::kValid && e.flags.split != "valid") return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::string> Session::DatasetEpisodeNames(const DatasetOptions& options) const {
+  std::vector<std::string> names;
+  for (const EpisodeEntry& e : demos_) {
+    if (InDataset(e, options)) names.push_back(e.name);
+  }
+  if (options.include_play) {
+    for (const EpisodeEntry& e : play_) names.push_back(e.name);
+  }
+  return names;
+}
+
 Dataset Session::LoadDataset(const DatasetOptions& options) const {
   Dataset dataset;
   dataset.spec = manifest_.spec;
   std::vector<const EpisodeEntry*> demos;
   for (const EpisodeEntry& e : demos_) {
-    if (e.flags.bad && !options.include_bad) continue;
-    if (options.split == Split::kTrain && e.flags.split != "train") continue;
-    if (options.split == Split::kValid && e.flags.split != "valid") continue;
+    if (!InDataset(e, options)) continue;
     if (!e.problem.empty()) {
       throw UserError(e.problem + " (delete the episode with `recon session delete-episode " +
                       dir_ + " " + e.name + "`, or mark it bad, to train on the others)");

@@ -122,6 +122,12 @@ void DrawRolloutsScreen(const ScreenContext& context) {
     ImGui::EndTable();
   }
   if (s.rollouts.empty()) ImGui::TextDisabled("No rollouts yet.");
+  for (const RolloutView& r : s.rollouts) {
+    if (!r.out_of_date.empty()) {
+      StatusText(Status::kWarning,
+                 Format("Out of date: %s: %s.", r.label.c_str(), r.out_of_date.c_str()));
+    }
+  }
   DrawPlayback(context);
 }
 

@@ -116,6 +116,9 @@ struct RolloutView {
   bool has_success = false;
   double success_rate = 0;
   int tests = 0;
+  /// Why these rollouts no longer describe the session (cli::RolloutStaleness): the model was
+  /// retrained since, or trained on data that has changed since; empty when they do.
+  std::string out_of_date;
   // The playback of one test scene (all methods show the same scene and step).
   bool has_replay = false;  ///< rollouts/<method>.replay.h5 exists and opened
   int scenario = 0;         ///< which test scene the playback shows

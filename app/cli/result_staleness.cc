@@ -1,0 +1,89 @@
+#include "app/cli/result_staleness.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "engine/core/strings.h"
+
+namespace recon::cli {
+
+namespace {
+
+using json = nlohmann::json;
+
+// At most this many names are listed; the rest are counted.
+constexpr size_t kNamesListed = 5;
+
+std::string NameList(const std::vector<std::string>& names) {
+  std::vector<std::string> shown(names.begin(),
+                                 names.begin() + std::min(names.size(), kNamesListed));
+  std::string text = JoinNames(shown);
+  if (names.size() > kNamesListed) {
+    text += " and " + std::to_string(names.size() - kNamesListed) + " more";
+  }
+  return text;
+}
+
+// a - b, in a's order.
+std::vector<std::string> Missing(const std::vector<std::string>& a,
+                                 const std::vector<std::string>& b) {
+  std::vector<std::string> out;
+  for (const std::string& name : a) {
+    if (std::find(b.begin(), b.end(), name) == b.end()) out.push_back(name);
+  }
+  return out;
+}
+
+// "4 demonstrations and 2 play chunks".
+std::string Counted(const std::vector<std::string>& names) {
+  const auto play = static_cast<size_t>(std::count_if(
+      names.begin(), names.end(), [](const std::string& n) { return n.rfind("play_", 0) == 0; }));
+  const size_t demos = names.size() - play;
+  std::string text = std::to_string(demos) + (demos == 1 ? " demonstration" : " demonstrations");
+  if (play > 0) {
+    text += " and " + std::to_string(play) + (play == 1 ? " play chunk" : " play chunks");
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string TrainingStaleness(const store::Session& session, const json& training) {
+  if (!training.is_object() || !training.contains("trained_on")) return "";
+  const json& on = training["trained_on"];
+  store::DatasetOptions options;
+  options.split = store::Split::kTrain;
+  options.include_bad = on.value("include_bad", false);
+  options.include_play = on.value("use_play", false);
+  const std::vector<std::string> then = on.value("episodes", std::vector<std::string>{});
+  const std::vector<std::string> now = session.DatasetEpisodeNames(options);
+  if (then == now) return "";
+  const std::vector<std::string> added = Missing(now, then);
+  const std::vector<std::string> gone = Missing(then, now);
+  std::string why = "trained on " + Counted(then) + "; since then ";
+  if (!added.empty()) {
+    why += NameList(added) + (added.size() == 1 ? " was" : " were") + " added to the training set";
+  }
+  if (!gone.empty()) {
+    why += std::string(added.empty() ? "" : ", and ") + NameList(gone) +
+           (gone.size() == 1 ? " has" : " have") +
+           " left it (deleted, marked bad or moved to the validation split)";
+  }
+  return why + ": retrain to use the session as it is";
+}
+
+std::string RolloutStaleness(const store::Session& session, const json& rollouts,
+                             const json& training) {
+  if (!rollouts.is_object() || !rollouts.contains("model_id") || rollouts["model_id"].is_null()) {
+    return "";  // from before model ids: nothing to compare
+  }
+  if (!training.is_object()) return "the model these rollouts are of is gone: retrain";
+  if (training.value("model_id", json(nullptr)) != rollouts["model_id"]) {
+    return "the model was retrained after these rollouts: roll it out again";
+  }
+  if (TrainingStaleness(session, training).empty()) return "";
+  return "rolled out with a model of the session as it was (see its training): retrain and roll "
+         "out again";
+}
+
+}  // namespace recon::cli
