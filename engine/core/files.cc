@@ -28,10 +28,10 @@ std::string NameTheTarget(std::string message, const std::string& tmp, const std
   return message;
 }
 
-bool IsTemporaryOfDeadWriter(const std::string& file_name) {
-  const size_t at = file_name.rfind(".tmp.");
+bool IsTemporaryOfDeadWriter(const std::string& file_name, const std::string& marker) {
+  const size_t at = file_name.rfind(marker);
   if (at == std::string::npos) return false;
-  const std::string digits = file_name.substr(at + 5);
+  const std::string digits = file_name.substr(at + marker.size());
   if (digits.empty() || digits.size() > 9 ||
       digits.find_first_not_of("0123456789") != std::string::npos) {
     return false;
@@ -47,6 +47,20 @@ int RemoveDeadTemporariesIn(const std::string& folder, const std::string& prefix
     const std::string name = entry.path().filename().string();
     if (name.rfind(prefix, 0) != 0 || !IsTemporaryOfDeadWriter(name)) continue;
     if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
+int RemoveDeadStagingFoldersOf(const std::string& path, const std::string& marker) {
+  const std::filesystem::path target(path);
+  const std::string prefix = target.filename().string() + marker;
+  const std::filesystem::path folder = target.parent_path().empty() ? "." : target.parent_path();
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !IsTemporaryOfDeadWriter(name, marker)) continue;
+    if (std::filesystem::remove_all(entry.path(), ec) > 0) ++removed;
   }
   return removed;
 }

@@ -27,8 +27,13 @@ std::string TemporarySibling(const std::string& path);
 std::string NameTheTarget(std::string message, const std::string& tmp, const std::string& target);
 
 /// True when `file_name` is a TemporarySibling whose writer process no longer runs (it was
-/// killed before its rename): such a file is garbage and may be removed.
-bool IsTemporaryOfDeadWriter(const std::string& file_name);
+/// killed before its rename): such a file is garbage and may be removed. `marker` is what
+/// precedes the writer's pid: ".tmp." for files, ".importing." for an import's staging folder.
+bool IsTemporaryOfDeadWriter(const std::string& file_name, const std::string& marker = ".tmp.");
+
+/// Removes every "<path>.importing.<pid>" folder (a staging folder, see ImportRobomimic) whose
+/// writer is dead, with its contents; returns how many.
+int RemoveDeadStagingFoldersOf(const std::string& path, const std::string& marker);
 /// Removes the temporaries of dead writers in `folder` whose names start with `prefix` (all of
 /// them for ""); returns how many. Errors are ignored (the next writer tries again).
 int RemoveDeadTemporariesIn(const std::string& folder, const std::string& prefix = "");

@@ -20,6 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A session being imported is built in "<target>.importing.<pid>" and renamed into place.
+constexpr char kStagingMarker[] = ".importing.";
+
 /// <prefix>N names of a group in number order (robomimic sorts demo_N the same way).
 std::vector<std::string> NumberedNames(const h5::File& file, hid_t group,
                                        const std::string& prefix = "demo_") {
@@ -288,9 +291,11 @@ ImportSummary ImportRobomimic(const std::string& path, const std::string& sessio
   // Built in a sibling folder and renamed into place at the end: a file that fails half-way
   // leaves no half-imported session.
   const fs::path target = fs::path(session_dir);
-  const std::string staging = session_dir + ".importing." + std::to_string(getpid());
+  const std::string staging = session_dir + kStagingMarker + std::to_string(getpid());
   std::error_code ignored;
   fs::remove_all(staging, ignored);
+  // What an import killed half-way (kill -9, a power cut) left beside the target.
+  RemoveDeadStagingFoldersOf(session_dir, kStagingMarker);
   try {
     {
       Session session = Session::Create(staging, manifest);

@@ -71,5 +71,23 @@ TEST(FilesTest, WritingAFileRemovesWhatAKilledWriterOfItLeft) {
   fs::remove_all(dir);
 }
 
+TEST(FilesTest, StagingFoldersOfDeadImportsAreRemovedWithTheirContents) {
+  const fs::path dir = Scratch();
+  const std::string dead = std::to_string(DeadPid()), live = std::to_string(getpid());
+  for (const std::string& name : {"copy.importing." + dead, "copy.importing." + live,
+                                  "other.importing." + dead, std::string("copy.importing.x")}) {
+    fs::create_directories(dir / name / "episodes");
+    Touch(dir / name / "episodes" / "demo_0.h5");
+  }
+  EXPECT_EQ(RemoveDeadStagingFoldersOf((dir / "copy").string(), ".importing."), 1);
+  EXPECT_FALSE(fs::exists(dir / ("copy.importing." + dead)));
+  EXPECT_TRUE(fs::exists(dir / ("copy.importing." + live) / "episodes" / "demo_0.h5"));
+  EXPECT_TRUE(fs::exists(dir / ("other.importing." + dead)));
+  EXPECT_TRUE(fs::exists(dir / "copy.importing.x"));
+  EXPECT_TRUE(IsTemporaryOfDeadWriter("copy.importing." + dead, ".importing."));
+  EXPECT_FALSE(IsTemporaryOfDeadWriter("copy.importing." + dead));  // not a ".tmp." file
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace recon

@@ -132,6 +132,26 @@ TEST(RobomimicTest, ExportThenImportGivesBackTheSameSession) {
   EXPECT_EQ(copy.Find("demo_0").meta.seed, original.Find("demo_0").meta.seed);
 }
 
+TEST(RobomimicTest, AnImportSweepsTheStagingFolderOfAKilledImport) {
+  TempDir dir("staging");
+  MakeSession(dir.Path("s"));
+  {
+    const Session session = Session::Open(dir.Path("s"), Session::Access::kReadOnly);
+    ExportRobomimic(session, dir.Path("out.hdf5"));
+  }
+  // What `session import` leaves when killed half-way: its staging folder, named by its pid.
+  const pid_t killed = fork();
+  if (killed == 0) _exit(0);
+  int status = 0;
+  waitpid(killed, &status, 0);
+  const std::string left = dir.Path("copy.importing." + std::to_string(killed));
+  fs::create_directories(left + "/episodes");
+  std::ofstream(left + "/episodes/demo_0.h5") << "half an episode";
+  ImportRobomimic(dir.Path("out.hdf5"), dir.Path("copy"));
+  EXPECT_FALSE(fs::exists(left));
+  EXPECT_EQ(Session::Open(dir.Path("copy"), Session::Access::kReadOnly).demos().size(), 2u);
+}
+
 TEST(RobomimicTest, ImportKeepsTheOrderOfManyPlayChunksAndRenumbersGaps) {
   TempDir dir("many-chunks");
   {
