@@ -24,37 +24,15 @@
 #include "engine/store/session.h"
 #include "engine/teach/recorder.h"
 #include "engine/worlds/world_factory.h"
+#include "tests/app/spawn_recon.h"
 
 namespace recon {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// Starts `recon` with `args` (output discarded) and returns its pid.
-pid_t Spawn(const std::vector<std::string>& args) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int null = open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    std::vector<char*> argv = {const_cast<char*>(RECON_CLI)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(RECON_CLI, argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
-/// Counts files that a killed writer left half-written (they carry ".tmp." in their names).
-int TemporaryFiles(const fs::path& dir) {
-  int count = 0;
-  if (!fs::exists(dir)) return 0;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    count += entry.path().filename().string().find(".tmp.") != std::string::npos;
-  }
-  return count;
-}
+using testing::SpawnRecon;
+using testing::TemporaryFiles;
 
 struct KillStats {
   int kills = 0;
@@ -73,7 +51,7 @@ double SecondsOfOneRun(std::vector<std::string> record_args, const fs::path& scr
   }
   fs::remove_all(scratch);
   const auto start = std::chrono::steady_clock::now();
-  const pid_t pid = Spawn(record_args);
+  const pid_t pid = SpawnRecon(record_args);
   int status = 0;
   waitpid(pid, &status, 0);
   const double seconds =
@@ -90,8 +68,7 @@ double SecondsOfOneRun(std::vector<std::string> record_args, const fs::path& scr
 template <typename ExpectedDemo, typename ExpectedPlay>
 void KillRepeatedly(const fs::path& dir, const std::vector<std::string>& record_args, int kills,
                     double min_s, double max_s, uint64_t seed, const ExpectedDemo& expected_demo,
-                    const ExpectedPlay& expected_play, KillStats& stats,
-                    int min_mid_commit = 0) {
+                    const ExpectedPlay& expected_play, KillStats& stats, int min_mid_commit = 0) {
   Rng rng(seed);
   std::set<std::string> committed;  // names seen after earlier kills: they must survive
   // Episodes whose data was compared with the reference. Recording never rewrites a committed
@@ -100,7 +77,7 @@ void KillRepeatedly(const fs::path& dir, const std::vector<std::string>& record_
   // Where a kill lands depends on the machine's load: past `kills`, keep killing (up to three
   // times as often) until `min_mid_commit` of them have hit a commit in progress.
   for (int k = 0; k < kills || (stats.mid_commit < min_mid_commit && k < 3 * kills); ++k) {
-    const pid_t pid = Spawn(record_args);
+    const pid_t pid = SpawnRecon(record_args);
     const double delay_s = rng.Uniform(min_s, max_s);
     std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
     kill(pid, SIGKILL);
