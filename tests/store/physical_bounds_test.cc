@@ -37,6 +37,16 @@ SessionManifest TabletopStateManifest() {
   return m;
 }
 
+// Shapes with a vector y of `y` values.
+DataSpec Spec(int x, int64_t y, int b, int u) {
+  DataSpec spec;
+  spec.x_dim = x;
+  spec.y_shape = {y};
+  spec.b_dim = b;
+  spec.u_dim = u;
+  return spec;
+}
+
 // Values a UR5 in the cell records, from `seed`; the last sample sits on every limit.
 DemoRecord ArmDemo(int n, uint64_t seed) {
   Rng rng(seed);
@@ -97,19 +107,11 @@ TEST(PhysicalBoundsTest, TheArmWorldsBoundEveryFieldAndTheAbstractWorldsNone) {
   EXPECT_TRUE(worlds::PhysicalBounds("tabletop", camera).y.empty());  // pixels: uint8 checks
   EXPECT_EQ(worlds::PhysicalBounds("tabletop", camera).x.size(), 7u);
 
-  DataSpec bins;
-  bins.x_dim = 6;
-  bins.y_shape = {12};
-  bins.b_dim = 1;
-  bins.u_dim = 6;
+  const DataSpec bins = Spec(6, 12, 1, 6);
   EXPECT_EQ(worlds::PhysicalBounds("bintransfer", bins).u.size(), 6u);
   EXPECT_EQ(worlds::PhysicalBounds("bintransfer", bins).b.size(), 1u);
 
-  DataSpec plane;
-  plane.x_dim = 2;
-  plane.y_shape = {6};
-  plane.b_dim = 2;
-  plane.u_dim = 2;
+  const DataSpec plane = Spec(2, 6, 2, 2);
   EXPECT_TRUE(worlds::PhysicalBounds("dynamic2d", plane).empty());
   EXPECT_TRUE(worlds::PhysicalBounds("imported", plane).empty());
   // Another world's shapes under this name: the shape check names that, not the bounds.
