@@ -66,6 +66,7 @@ struct ExperimentFlags {
   double demo_noise = 0.0;     ///< only when --demo-noise is given; else the world's default
   int random_shift = -1;       ///< -1: the world's recipe
   double feature_noise = 0.0;  ///< only when --feature-noise was given
+  int beacon_filter = -1;      ///< -1: the world's recipe
   double feature_gate = 0.0;   ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
@@ -161,6 +162,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       flags.random_shift >= 0 ? flags.random_shift : recipe.train.random_shift_px;
   config.train.feature_noise =
       given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
+  config.train.beacon_filter_samples =
+      flags.beacon_filter >= 0 ? flags.beacon_filter : recipe.train.beacon_filter_samples;
   config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
   config.train.gate_margin = recipe.train.gate_margin;
   if (given("--feature-gate")) {
@@ -368,6 +371,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "deviations of each feature over the batch (0 = off; default: the world's "
                    "recipe)")
       ->check(NumberBetween(0, learn::kMaxFeatureNoise));
+  command
+      ->add_option("--beacon-filter", flags->beacon_filter,
+                   "beacon readings are trained on as the mean of the readings up to N samples "
+                   "before and after them in the same take (0 = raw; default: the world's "
+                   "recipe)")
+      ->check(WholeBetween(0, learn::kMaxBeaconFilterSamples));
   CLI::Option* gate =
       command
           ->add_option("--feature-gate", flags->feature_gate,

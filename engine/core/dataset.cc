@@ -73,6 +73,17 @@ void ValidateDataset(const Dataset& dataset, const std::string& source) {
       CheckField(sample.u, s.u_dim, where, "u");
     }
   }
+  if (!dataset.play_chunks.empty()) {
+    int64_t total = 0;
+    for (int size : dataset.play_chunks) {
+      if (size < 0) throw UserError(source + ": a play chunk has a negative size");
+      total += size;
+    }
+    if (total != static_cast<int64_t>(dataset.play.size())) {
+      throw UserError(source + ": the play chunks hold " + std::to_string(total) +
+                      " samples, but there are " + std::to_string(dataset.play.size()));
+    }
+  }
   for (size_t p = 0; p < dataset.play.size(); ++p) {
     const PlaySample& sample = dataset.play[p];
     const std::string where = source + ": play sample " + std::to_string(p);

@@ -136,6 +136,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"standardize_inputs", config.train.standardize_inputs},
       {"random_shift_px", config.train.random_shift_px},
       {"feature_noise", config.train.feature_noise},
+      {"beacon_filter_samples", config.train.beacon_filter_samples},
       {"gate_margin", config.train.gate_margin},
       {"gate_target", learn::ToString(config.train.gate_target)},
       {"play_per_scenario", config.play_per_scenario}};

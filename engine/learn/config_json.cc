@@ -61,6 +61,7 @@ std::string ToJson(const TrainConfig& t) {
   j["standardize_targets"] = t.standardize_targets;
   j["random_shift_px"] = t.random_shift_px;
   j["feature_noise"] = t.feature_noise;
+  j["beacon_filter_samples"] = t.beacon_filter_samples;
   j["gate_margin"] = t.gate_margin;
   j["gate_target"] = ToString(t.gate_target);
   j["lr_schedule"] = ToString(t.lr_schedule);
@@ -131,6 +132,10 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   // Checkpoints from before augmentation existed trained without it.
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
+  // ... and on raw beacon readings.
+  if (j.contains("beacon_filter_samples")) {
+    Read(j, "beacon_filter_samples", t.beacon_filter_samples, what);
+  }
   if (j.contains("gate_margin")) Read(j, "gate_margin", t.gate_margin, what);
   // ... and, before the choice existed, gated by the loss.
   if (j.contains("gate_target")) {

@@ -135,6 +135,8 @@ struct NetworkConfig {
 
 /// The largest TrainConfig::feature_noise accepted (in standard deviations of each feature).
 constexpr double kMaxFeatureNoise = 10.0;
+/// The largest TrainConfig::beacon_filter_samples accepted: longer than any episode.
+constexpr int kMaxBeaconFilterSamples = 100000;
 /// The largest TrainConfig::gate_margin accepted (nats per action).
 constexpr double kMaxGateMargin = 100.0;
 
@@ -185,6 +187,13 @@ struct TrainConfig {
   /// spread, so the feature net cannot outgrow it by scaling up. 0 = off (nothing drawn, results
   /// unchanged); at most kMaxFeatureNoise.
   double feature_noise = 0.0;
+  /// Beacon readings smoothed before they are trained on (beacon_filter.h): each reading of a
+  /// demonstration, or of a play chunk (Dataset::play_chunks), becomes the mean of the readings
+  /// up to this many samples before and after it in the same episode or chunk. A UWB beacon's
+  /// noise (about 7 cm per axis on a DWM1001) is independent from sample to sample, and a feature
+  /// net trained on raw readings learns each frame's noise by heart. 0 = raw readings (results
+  /// without it are unchanged); at most kMaxBeaconFilterSamples. Checkpoints from before read 0.
+  int beacon_filter_samples = 0;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
   /// there (GateTarget::kLoss), or how much the demonstrations must disagree

@@ -61,6 +61,11 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     FormatNumber(kMaxFeatureNoise) + " standard deviations (got " +
                     FormatNumber(train.feature_noise) + ")");
   }
+  if (train.beacon_filter_samples < 0 || train.beacon_filter_samples > kMaxBeaconFilterSamples) {
+    throw UserError("train config: beacon_filter_samples must be between 0 and " +
+                    std::to_string(kMaxBeaconFilterSamples) + " (got " +
+                    std::to_string(train.beacon_filter_samples) + ")");
+  }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +

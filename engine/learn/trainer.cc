@@ -5,6 +5,7 @@
 
 #include "engine/core/error.h"
 #include "engine/learn/augmentation.h"
+#include "engine/learn/beacon_filter.h"
 #include "engine/learn/gate_targets.h"
 #include "engine/learn/kernels.h"
 #include "engine/learn/losses.h"
@@ -40,6 +41,12 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
   CheckTrainingSetup(data, network, train);
   arch_ = BuildArchitecture(data.spec, network, train.method);
   data_ = TrainingData::From(data, network.image_scale, network.action_chunk);
+  if (train.beacon_filter_samples > 0) {
+    const int d = data.spec.b_dim;
+    SmoothBeaconRows(data_.demo_b, d, data_.demo_episode, train.beacon_filter_samples);
+    SmoothBeaconRows(data_.play_b, d, GroupsOfChunks(data_.num_play, data.play_chunks),
+                     train.beacon_filter_samples);
+  }
   scaling_ =
       train.standardize_targets ? TargetScaling::Fit(data_) : TargetScaling::Identity(data.spec);
   if (train.standardize_inputs) scaling_.FitInputs(data_);

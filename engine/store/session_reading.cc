@@ -74,6 +74,7 @@ Dataset Session::LoadDataset(const DatasetOptions& options) const {
   ParallelFor(chunks.size(), threads,
               [&](size_t i) { play[i] = ReadPlayFile(chunks[i]->path, manifest_).samples; });
   for (std::vector<PlaySample>& chunk : play) {
+    dataset.play_chunks.push_back(static_cast<int>(chunk.size()));
     for (PlaySample& sample : chunk) dataset.play.push_back(std::move(sample));
   }
   return dataset;

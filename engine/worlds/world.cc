@@ -57,6 +57,7 @@ Dataset RecordDemonstrations(World& world, const std::vector<uint64_t>& seeds,
     Rng noise_rng(Rng::Derive(noise.seed, seeds[index]));
     // Play comes from the initial scenario, before the demonstration moves anything.
     for (int i = 0; i < play_per_scenario; ++i) dataset.play.push_back(world.SamplePlay());
+    if (play_per_scenario > 0) dataset.play_chunks.push_back(play_per_scenario);
     Episode episode;
     episode.samples.reserve(world.EpisodeLength());
     for (int t = 0; t < world.EpisodeLength(); ++t) {

@@ -82,7 +82,8 @@ std::vector<OptionCase> NumericOptions() {
         std::string("experiment ") + world + " --out " + (out / "exp").string() + " ";
     for (const char* option :
          {"--demos", "--runs", "--tests", "--jobs", "--steps", "--baseline-steps", "--batch",
-          "--play", "--feature-dim", "--random-shift", "--action-chunk", "--seed"}) {
+          "--play", "--feature-dim", "--random-shift", "--action-chunk", "--beacon-filter",
+          "--seed"}) {
       cases.push_back({exp, option, true});
     }
     for (const char* option :

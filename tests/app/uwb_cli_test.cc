@@ -64,8 +64,14 @@ TEST(UwbCliTest, AMissingPortOrAnUnpluggedTagIsAClearError) {
   EXPECT_THAT(r.output, HasSubstr("NODE_ID=NAME"));
   // Unplugged while streaming: the readings so far, the counts, then the error.
   uwb::FakeDwm1001 fake({[] { return std::string("POS,1.00,2.00,0.00,70\r\n"); }, 20});
+  // Unplugged once the monitor has been streaming for a while (5 updates), not after a fixed
+  // time: under load the monitor took longer than 1.5 s to open the port, and then only the open
+  // failed. The deadline only bounds a monitor that never starts.
   std::thread unplug([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (fake.updates_sent() < 5 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
     fake.Unplug();
   });
   r = testing::RunRecon("uwb monitor --port " + fake.port());

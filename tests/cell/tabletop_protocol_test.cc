@@ -236,6 +236,28 @@ TEST(TabletopProtocolTest, TheExpertSucceedsInEveryLayoutOfBothKinds) {
   }
 }
 
+// A learner imitates the teacher's joint velocities only approximately. The teacher's descent
+// must leave it room: an arm that follows the teacher's commands at 80 % of their speed (as a
+// policy that under-fits them does) must still catch the toast at its first close, in every
+// layout. Aiming at the slice's centre and closing 12 mm above it, the teacher itself had 0.3 mm
+// to spare (docs/cell.md).
+TEST(TabletopProtocolTest, ALearnerSlowerThanTheTeacherStillCatchesTheToastAtItsFirstClose) {
+  auto world = MakeTabletop("paper", 0.0, "none");
+  for (uint64_t seed = 300; seed < 310; ++seed) {  // seeds 300-309
+    SCOPED_TRACE(seed);
+    world->Reset(seed);
+    for (int t = 0; t < world->EpisodeLength() && !world->TaskSucceeded(); ++t) {
+      std::vector<float> u = world->ExpertAction();
+      for (int j = 0; j < 6; ++j) u[j] *= 0.8f;
+      world->Step(u);
+    }
+    const std::map<std::string, double> d = world->OutcomeDetails();
+    EXPECT_EQ(d.at("grasped"), 1.0);
+    EXPECT_EQ(d.at("closes_on_nothing"), 0.0);
+    EXPECT_TRUE(world->TaskSucceeded());
+  }
+}
+
 TEST(TabletopProtocolTest, TheDiagnosticObservesTheObjectsTruePositionsWithoutACamera) {
   CellResources cell;  // no renderer: the diagnostic draws nothing
   auto world = MakeWorld("tabletop-state", "plate", 0.0, false, cell);
