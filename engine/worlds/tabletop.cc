@@ -44,9 +44,10 @@ constexpr double kDescentTolerance_m = 0.03;
 // The expert descends onto the toast as a person at the joystick does: down to the table, not to
 // the slice's centre. It aims the tips this far below the centre, i.e. at the safety envelope's
 // tool floor (5 mm over the table), which stops them there. Aiming at the centre itself, the
-// descent slowed to a crawl just above the window a parallel gripper holds a thin slice in (tips
-// at most 3 mm above its centre, Ur5Arm): the teacher reached it 0.3 mm inside as the fingers
-// shut, and a learner that descended 10 % slower closed on nothing (docs/results.md).
+// descent slowed exponentially (the gain, 2.5 /s) just above the window a parallel gripper holds a
+// thin slice in (tips at most 3 mm above its centre, Ur5Arm): in the 0.6 s the fingers take it
+// got about 0.3 mm inside, and an arm at 80 % of the teacher's speed closed on nothing in every
+// layout tried (TabletopProtocolTest; docs/results.md).
 constexpr double kDescentBelowCentre_m = 0.003;
 // It closes once the tips are within this distance of the toast's centre in the plane and this
 // height above it: inside the window, with the arm still pushing down into it.
