@@ -8,12 +8,11 @@ void SmoothBeaconRows(std::vector<float>& b, int dim, const std::vector<int32_t>
                       int half_window) {
   if (half_window <= 0 || dim <= 0) return;
   const int64_t rows = static_cast<int64_t>(group.size());
-  const std::vector<float> raw = b;
-  // Prefix sums per group in double, so a long window costs one subtraction per value.
+  // Prefix sums over all rows, in double, taken before any row is rewritten: a window (clipped
+  // to its group below) then costs one subtraction per value however long it is.
   std::vector<double> prefix(static_cast<size_t>((rows + 1) * dim), 0.0);
   for (int64_t r = 0; r < rows; ++r) {
-    for (int k = 0; k < dim; ++k)
-      prefix[(r + 1) * dim + k] = prefix[r * dim + k] + raw[r * dim + k];
+    for (int k = 0; k < dim; ++k) prefix[(r + 1) * dim + k] = prefix[r * dim + k] + b[r * dim + k];
   }
   int64_t begin = 0;
   while (begin < rows) {

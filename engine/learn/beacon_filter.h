@@ -15,9 +15,9 @@
 
 namespace recon::learn {
 
-/// Replaces each row of `b` (`rows` rows of `dim` values) by the mean of the rows within
-/// `half_window` rows before and after it that belong to the same group (`group[row]`, rows of a
-/// group contiguous, e.g. one demonstration or one play chunk). half_window 0 leaves `b` as it
+/// Replaces each row of `b` (one per entry of `group`, `dim` values each) by the mean of the rows
+/// within `half_window` rows before and after it that belong to the same group (`group[row]`, rows
+/// of a group contiguous, e.g. one demonstration or one play chunk). half_window 0 leaves `b` as it
 /// is; one longer than a group averages the whole group.
 void SmoothBeaconRows(std::vector<float>& b, int dim, const std::vector<int32_t>& group,
                       int half_window);
