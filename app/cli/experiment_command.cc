@@ -63,11 +63,12 @@ struct ExperimentFlags {
   std::string layout = "paper";
   std::string observation = "image";
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
-  double demo_noise = 0.0;     ///< only when --demo-noise is given; else the world's default
-  int random_shift = -1;       ///< -1: the world's recipe
-  double feature_noise = 0.0;  ///< only when --feature-noise was given
-  int beacon_filter = -1;      ///< -1: the world's recipe
-  double feature_gate = 0.0;   ///< the gate margin, only when --feature-gate was given
+  double demo_noise = 0.0;        ///< only when --demo-noise is given; else the world's default
+  int random_shift = -1;          ///< -1: the world's recipe
+  double feature_noise = 0.0;     ///< only when --feature-noise was given
+  int beacon_filter = -1;         ///< -1: the world's recipe
+  double play_consistency = 0.0;  ///< only when --play-consistency was given
+  double feature_gate = 0.0;      ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
   std::string lr_schedule;          ///< "constant" | "cosine"; empty: the world's recipe
@@ -164,6 +165,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
   config.train.beacon_filter_samples =
       flags.beacon_filter >= 0 ? flags.beacon_filter : recipe.train.beacon_filter_samples;
+  config.train.play_consistency =
+      given("--play-consistency") ? flags.play_consistency : recipe.train.play_consistency;
   config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
   config.train.gate_margin = recipe.train.gate_margin;
   if (given("--feature-gate")) {
@@ -377,6 +380,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "before and after them in the same take (0 = raw; default: the world's "
                    "recipe)")
       ->check(WholeBetween(0, learn::kMaxBeaconFilterSamples));
+  command
+      ->add_option("--play-consistency", flags->play_consistency,
+                   "weight of a RECON term that asks the features of two play samples of one "
+                   "beacon placement to agree (0 = off, the paper's RECON; default: the world's "
+                   "recipe)")
+      ->check(NumberBetween(0, learn::kMaxPlayConsistency));
   CLI::Option* gate =
       command
           ->add_option("--feature-gate", flags->feature_gate,

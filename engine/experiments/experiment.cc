@@ -69,6 +69,17 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
                     " (standard deviations of each feature; got " +
                     FormatNumber(config.train.feature_noise) + ")");
   }
+  if (!std::isfinite(config.train.play_consistency) || config.train.play_consistency < 0 ||
+      config.train.play_consistency > learn::kMaxPlayConsistency) {
+    throw UserError("--play-consistency must be between 0 and " +
+                    FormatNumber(learn::kMaxPlayConsistency) + " (got " +
+                    FormatNumber(config.train.play_consistency) + ")");
+  }
+  if (config.train.play_consistency > 0 && config.train.backend == learn::Backend::kTorch) {
+    throw UserError(
+        "--play-consistency is implemented on the fused backend only (got --backend "
+        "torch)");
+  }
   if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 ||
       config.demo_noise > worlds::kMaxDemoNoise) {
     throw UserError("--demo-noise must be between 0 and " + FormatNumber(worlds::kMaxDemoNoise) +

@@ -62,6 +62,7 @@ std::string ToJson(const TrainConfig& t) {
   j["random_shift_px"] = t.random_shift_px;
   j["feature_noise"] = t.feature_noise;
   j["beacon_filter_samples"] = t.beacon_filter_samples;
+  j["play_consistency"] = t.play_consistency;
   j["gate_margin"] = t.gate_margin;
   j["gate_target"] = ToString(t.gate_target);
   j["lr_schedule"] = ToString(t.lr_schedule);
@@ -132,10 +133,11 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   // Checkpoints from before augmentation existed trained without it.
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
-  // ... and on raw beacon readings.
+  // ... and on raw beacon readings, without play consistency.
   if (j.contains("beacon_filter_samples")) {
     Read(j, "beacon_filter_samples", t.beacon_filter_samples, what);
   }
+  if (j.contains("play_consistency")) Read(j, "play_consistency", t.play_consistency, what);
   if (j.contains("gate_margin")) Read(j, "gate_margin", t.gate_margin, what);
   // ... and, before the choice existed, gated by the loss.
   if (j.contains("gate_target")) {

@@ -137,6 +137,8 @@ struct NetworkConfig {
 constexpr double kMaxFeatureNoise = 10.0;
 /// The largest TrainConfig::beacon_filter_samples accepted: longer than any episode.
 constexpr int kMaxBeaconFilterSamples = 100000;
+/// The largest TrainConfig::play_consistency accepted.
+constexpr double kMaxPlayConsistency = 100.0;
 /// The largest TrainConfig::gate_margin accepted (nats per action).
 constexpr double kMaxGateMargin = 100.0;
 
@@ -194,6 +196,13 @@ struct TrainConfig {
   /// net trained on raw readings learns each frame's noise by heart. 0 = raw readings (results
   /// without it are unchanged); at most kMaxBeaconFilterSamples. Checkpoints from before read 0.
   int beacon_filter_samples = 0;
+  /// Weight of RECON's play-consistency term (play_consistency.h): the features of two play
+  /// samples of the same chunk (one beacon placement, the marked object still, the others moved)
+  /// are asked to agree, relative to their spread over the play batch. Play pairs are then drawn
+  /// from one chunk each. The Baseline and runs without play data ignore it. 0 = off (results
+  /// unchanged); at most kMaxPlayConsistency; the fused backend only. Checkpoints from before
+  /// read 0.
+  double play_consistency = 0.0;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
   /// there (GateTarget::kLoss), or how much the demonstrations must disagree
@@ -220,6 +229,7 @@ struct StepMetrics {
   float action_loss = 0;
   float beacon_loss = 0;
   float play_loss = 0;
+  float consistency_loss = 0;  ///< TrainConfig::play_consistency's term (unweighted)
   float total_loss = 0;
   float gate_mean = 1;   ///< the feature gate's mean over the batch (1: no gate, always open)
   float blind_loss = 0;  ///< the gate's blind branch: its action term (as action_loss)

@@ -97,9 +97,13 @@ void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& 
 
 void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
               const float* grad_beacon_head, ModelBuffers& buffers, float* grads,
-              const float* grad_blind_head) {
+              const float* grad_blind_head, const float* grad_phi_extra) {
   const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
-  std::fill(buffers.grad_phi.begin(), buffers.grad_phi.end(), 0.0f);
+  if (grad_phi_extra != nullptr) {
+    std::copy_n(grad_phi_extra, buffers.grad_phi.size(), buffers.grad_phi.begin());
+  } else {
+    std::fill(buffers.grad_phi.begin(), buffers.grad_phi.end(), 0.0f);
+  }
   if (grad_policy_head != nullptr) {
     MlpBackward(arch.policy, params, buffers.policy_input.data(), grad_policy_head, buffers.policy,
                 grads, buffers.grad_policy_input.data());

@@ -59,8 +59,10 @@ void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& 
 /// Backpropagates the given head gradients (either may be null if that head was not used) and
 /// adds all parameter gradients to `grads`. With a feature gate, grad_policy_head is the seeing
 /// branch's, `grad_blind_head` the blind branch's, and the caller has filled buffers.grad_gate.
+/// `grad_phi_extra` ([batch][k], optional) is a loss's gradient on the features themselves
+/// (TrainConfig::play_consistency).
 void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
               const float* grad_beacon_head, ModelBuffers& buffers, float* grads,
-              const float* grad_blind_head = nullptr);
+              const float* grad_blind_head = nullptr, const float* grad_phi_extra = nullptr);
 
 }  // namespace recon::learn

@@ -66,6 +66,17 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     std::to_string(kMaxBeaconFilterSamples) + " (got " +
                     std::to_string(train.beacon_filter_samples) + ")");
   }
+  if (!std::isfinite(train.play_consistency) || train.play_consistency < 0 ||
+      train.play_consistency > kMaxPlayConsistency) {
+    throw UserError("train config: play_consistency must be between 0 and " +
+                    FormatNumber(kMaxPlayConsistency) + " (got " +
+                    FormatNumber(train.play_consistency) + ")");
+  }
+  if (train.play_consistency > 0 && train.backend == Backend::kTorch) {
+    throw UserError(
+        "train config: play_consistency is implemented on the fused backend only; use the "
+        "fused backend or set it to 0");
+  }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +

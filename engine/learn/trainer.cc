@@ -73,6 +73,10 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     target_play_.assign(target_b_.size(), 0.0f);
     noise_play_.assign(target_b_.size(), 0.0f);
     grad_play_head_.assign(grad_beacon_head_.size(), 0.0f);
+    if (train.play_consistency > 0) {
+      play_chunks_ = PlayChunks::From(data_.num_play, data.play_chunks);
+      grad_play_phi_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
+    }
   }
   if (train.random_shift_px > 0) {
     shifted_demo_y_.assign(static_cast<size_t>(batch) * data_.y_size, 0.0f);
@@ -124,8 +128,12 @@ void TrainerImpl::GatherBatch() {
     if (!row_gate_targets_.empty()) batch_gate_targets_[i] = row_gate_targets_[row];
   }
   if (UsesPlay()) {
+    const bool pairs = !grad_play_phi_.empty();  // TrainConfig::play_consistency
+    int64_t row = 0;
     for (int i = 0; i < play_.batch; ++i) {
-      const int64_t row = static_cast<int64_t>(batch_rng_.UniformInt(data_.num_play));
+      // With play consistency, rows 2p and 2p + 1 come from one chunk (PlayConsistencyLoss).
+      row = pairs && i % 2 == 1 ? play_chunks_.Partner(row, batch_rng_)
+                                : static_cast<int64_t>(batch_rng_.UniformInt(data_.num_play));
       CopyRow(data_.play_x, row, s.x_dim, play_.x.data() + i * s.x_dim);
       CopyRow(data_.play_b, row, s.b_dim, target_play_.data() + i * s.b_dim);
       play_.y[i] = data_.PlayY(row);
@@ -175,6 +183,7 @@ void TrainerImpl::Step() {
   double total = train_.action_weight * m.action_loss;
   if (arch_.has_beacon_net()) total += train_.beacon_weight * m.beacon_loss;
   if (UsesPlay()) total += train_.play_weight * m.play_loss;
+  if (!grad_play_phi_.empty()) total += train_.play_consistency * m.consistency_loss;
   if (arch_.has_gate()) total += train_.action_weight * m.blind_loss + m.gate_loss;
   m.total_loss = static_cast<float>(total);
 

@@ -12,6 +12,7 @@
 #include "engine/learn/architecture.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/model.h"
+#include "engine/learn/play_consistency.h"
 #include "engine/learn/target_scaling.h"
 #include "engine/learn/torch_step.h"
 #include "engine/learn/training_data.h"
@@ -102,6 +103,10 @@ class TrainerImpl {
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
   std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
   std::vector<float> grad_blind_head_;              ///< the feature gate's blind branch
+  /// TrainConfig::play_consistency: each play row's chunk, and the term's gradient on the play
+  /// batch's features. Empty when it is off.
+  PlayChunks play_chunks_;
+  std::vector<float> grad_play_phi_;
   /// GateTarget::kDisagreement: each demonstration row's gate target (fixed before training),
   /// and the batch's. Empty otherwise.
   std::vector<float> row_gate_targets_, batch_gate_targets_;
