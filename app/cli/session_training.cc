@@ -124,9 +124,10 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
                   {"action_loss", json::array()},
                   {"beacon_loss", json::array()},
                   {"play_loss", json::array()},
+                  {"consistency_loss", json::array()},
                   {"total_loss", json::array()}};
   const int window = std::max(1, train.steps / kHistoryPoints);
-  double sums[4] = {0, 0, 0, 0};
+  double sums[5] = {0, 0, 0, 0, 0};
   int count = 0;
   TrainingProgress progress{method, Label(method, play), 0, train.steps, {}};
   trainer.SetObserver([&](const learn::StepMetrics& s) {
@@ -139,12 +140,14 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
     sums[1] += s.beacon_loss;
     sums[2] += s.play_loss;
     sums[3] += s.total_loss;
+    sums[4] += s.consistency_loss;
     if (++count == window) {
       history["step"].push_back(s.step + 1 - window / 2);
       history["action_loss"].push_back(sums[0] / count);
       history["beacon_loss"].push_back(sums[1] / count);
       history["play_loss"].push_back(sums[2] / count);
       history["total_loss"].push_back(sums[3] / count);
+      history["consistency_loss"].push_back(sums[4] / count);
       count = 0;
       for (double& v : sums) v = 0;
       progress.step = s.step + 1;
@@ -179,6 +182,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"batch", flags.batch},
       {"learning_rate", train.learning_rate},
       {"feature_dim", flags.feature_dim},
+      {"play_consistency", train.play_consistency},
       {"train_demos", data.demos.size()},
       {"train_samples", data.NumDemoSamples()},
       {"play_samples", data.play.size()},
@@ -194,6 +198,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
        {{"action_loss", result.final_metrics.action_loss},
         {"beacon_loss", result.final_metrics.beacon_loss},
         {"play_loss", result.final_metrics.play_loss},
+        {"consistency_loss", result.final_metrics.consistency_loss},
         {"total_loss", result.final_metrics.total_loss}}},
       {"train_action_mse", ActionMse(policy, data)},
       {"valid_action_mse", valid.demos.empty() ? json(nullptr) : json(ActionMse(policy, valid))},

@@ -75,11 +75,6 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
                     FormatNumber(learn::kMaxPlayConsistency) + " (got " +
                     FormatNumber(config.train.play_consistency) + ")");
   }
-  if (config.train.play_consistency > 0 && config.train.backend == learn::Backend::kTorch) {
-    throw UserError(
-        "--play-consistency is implemented on the fused backend only (got --backend "
-        "torch)");
-  }
   if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 ||
       config.demo_noise > worlds::kMaxDemoNoise) {
     throw UserError("--demo-noise must be between 0 and " + FormatNumber(worlds::kMaxDemoNoise) +

@@ -27,17 +27,18 @@ std::string ResultsCsv(const ExperimentResult& result) {
   }
   std::ostringstream csv;
   csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
-         "final_action_loss,final_beacon_loss,final_play_loss"
+         "final_action_loss,final_beacon_loss,final_play_loss,final_consistency_loss"
       << (result.has_success ? ",success_rate" : "");
   for (const std::string& key : detail_keys) csv << "," << key;
   csv << "\n";
   char buf[512];
   for (const RunResult& r : result.runs) {
-    std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g",
+    std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g,%.6g",
                   r.condition.c_str(), r.demos, r.run, static_cast<unsigned long long>(r.data_seed),
                   static_cast<unsigned long long>(r.train_seed), r.metric, r.attempts,
                   r.train_steps, r.train_seconds, r.final_losses.action_loss,
-                  r.final_losses.beacon_loss, r.final_losses.play_loss);
+                  r.final_losses.beacon_loss, r.final_losses.play_loss,
+                  r.final_losses.consistency_loss);
     csv << buf;
     if (result.has_success) csv << "," << r.success_rate;
     for (const std::string& key : detail_keys) {

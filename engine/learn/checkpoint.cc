@@ -66,7 +66,7 @@ std::string StateToJson(const TrainerState& s, uint64_t fingerprint) {
   j["last"] = {{"attempt", s.last.attempt},         {"step", s.last.step},
                {"action_loss", s.last.action_loss}, {"beacon_loss", s.last.beacon_loss},
                {"play_loss", s.last.play_loss},     {"total_loss", s.last.total_loss},
-               {"gate_mean", s.last.gate_mean}};
+               {"gate_mean", s.last.gate_mean},     {"consistency_loss", s.last.consistency_loss}};
   j["dataset_fingerprint"] = fingerprint;
   return j.dump();
 }
@@ -91,6 +91,10 @@ void StateFromJson(const std::string& text, TrainerState& s, uint64_t& fingerpri
     s.last.total_loss = last.at("total_loss").get<float>();
     // States from before the feature gate: no gate, open.
     if (last.contains("gate_mean")) s.last.gate_mean = last.at("gate_mean").get<float>();
+    // ... and before play consistency: no such term.
+    if (last.contains("consistency_loss")) {
+      s.last.consistency_loss = last.at("consistency_loss").get<float>();
+    }
     fingerprint = j.at("dataset_fingerprint").get<uint64_t>();
   } catch (const json::exception& e) {
     throw UserError(std::string("trainer state is missing or invalid (") + e.what() + ")");

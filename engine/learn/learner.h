@@ -200,8 +200,7 @@ struct TrainConfig {
   /// samples of the same chunk (one beacon placement, the marked object still, the others moved)
   /// are asked to agree, relative to their spread over the play batch. Play pairs are then drawn
   /// from one chunk each. The Baseline and runs without play data ignore it. 0 = off (results
-  /// unchanged); at most kMaxPlayConsistency; the fused backend only. Checkpoints from before
-  /// read 0.
+  /// unchanged); at most kMaxPlayConsistency. Checkpoints from before read 0.
   double play_consistency = 0.0;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open

@@ -4,14 +4,6 @@
 
 namespace recon::learn {
 
-namespace {
-
-// Keeps the ratio finite when every feature is constant over the batch (a fresh network can
-// start there); small against the spread of features that carry anything.
-constexpr double kSpreadFloor = 1e-6;
-
-}  // namespace
-
 PlayChunks PlayChunks::From(int64_t rows, const std::vector<int>& chunk_sizes) {
   PlayChunks chunks;
   chunks.first.resize(static_cast<size_t>(rows));
@@ -67,7 +59,7 @@ float PlayConsistencyLoss(const float* phi, int batch, int k, float weight, floa
     for (int j = 0; j < k; ++j) distance += (a[j] - b[j]) * static_cast<double>(a[j] - b[j]);
   }
   distance /= pairs;
-  const double spread = 2 * variance + kSpreadFloor;
+  const double spread = 2 * variance + kPlayConsistencySpreadFloor;
   const double loss = distance / spread;
   // d(distance / spread) = d distance / spread - loss * d spread / spread, where
   // d distance / d a = 2 (a - b) / pairs (and the opposite for b) and

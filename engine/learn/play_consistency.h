@@ -20,6 +20,10 @@
 
 namespace recon::learn {
 
+/// Added to the spread the loss divides by: keeps it finite when every feature is constant over
+/// the batch (a fresh network can start there); small against features that carry anything.
+constexpr double kPlayConsistencySpreadFloor = 1e-6;
+
 /// Each play row's chunk (consecutive rows of Dataset::play_chunks; empty chunk sizes: every row
 /// its own chunk) as the first row and size of that chunk, for drawing pairs.
 struct PlayChunks {
@@ -37,7 +41,7 @@ struct PlayChunks {
 /// the batch (sum over the k features). Rows without structure give about 1; features that only
 /// differ between chunks give 0. Writes weight * dLoss/dphi into `grad_phi` ([batch][k]; the
 /// variance is differentiated too, so scaling the features changes nothing) and returns the
-/// unweighted loss.
+/// unweighted loss. The Torch backend (torch_step.cc) computes the same from autograd.
 float PlayConsistencyLoss(const float* phi, int batch, int k, float weight, float* grad_phi);
 
 }  // namespace recon::learn

@@ -72,11 +72,6 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     FormatNumber(kMaxPlayConsistency) + " (got " +
                     FormatNumber(train.play_consistency) + ")");
   }
-  if (train.play_consistency > 0 && train.backend == Backend::kTorch) {
-    throw UserError(
-        "train config: play_consistency is implemented on the fused backend only; use the "
-        "fused backend or set it to 0");
-  }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +

@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "engine/learn/play_consistency.h"
 #include "engine/learn/spatial_softmax.h"
 
 namespace recon::learn {
@@ -198,6 +199,18 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
                                      Wrap(batch.target_play, {n, spec.b_dim}), batch.noise_play);
     total = total + play * s.train.play_weight;
     metrics.play_loss = play.item<float>();
+    const int64_t pairs = n / 2;
+    if (s.train.play_consistency > 0 && pairs > 0) {
+      // As PlayConsistencyLoss: rows 2p and 2p + 1 are pair p; the total variance is
+      // differentiated too.
+      const at::Tensor centred = play_phi - play_phi.mean(0, /*keepdim=*/true);
+      const at::Tensor spread = 2 * centred.pow(2).sum(1).mean() + kPlayConsistencySpreadFloor;
+      const at::Tensor first = play_phi.slice(0, 0, 2 * pairs, 2);
+      const at::Tensor second = play_phi.slice(0, 1, 2 * pairs, 2);
+      const at::Tensor consistency = (first - second).pow(2).sum(1).mean() / spread;
+      total = total + consistency * s.train.play_consistency;
+      metrics.consistency_loss = consistency.item<float>();
+    }
   }
   s.total = total;
 }

@@ -107,6 +107,22 @@ std::vector<Case> Cases() {
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
+  // RECON's play consistency (TrainConfig::play_consistency): play pairs from one chunk, on
+  // images and on vectors.
+  for (bool image : {true, false}) {
+    Case c;
+    c.name = std::string(image ? "image" : "vector") + " play-consistency";
+    c.data = image ? MakeImageTask(28, 24, 32, 12) : MakeVectorTask(29, 20, 40);
+    c.data.play_chunks = image ? std::vector<int>{4, 4, 4} : std::vector<int>{10, 10, 10, 10};
+    if (image) c.network.image_scale = 1.0f / 255.0f;
+    c.train.restart_rule = false;
+    c.train.method = Method::kRecon;
+    c.train.seed = 9;
+    c.train.play_weight = 0.7;
+    c.train.play_consistency = 1.3;
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   // The feature gate with feature noise under it (NetworkConfig::feature_gate_hidden): RECON on
   // images, the Baseline on vectors.
   for (bool image : {true, false}) {
