@@ -44,7 +44,8 @@ struct Dataset {
   std::vector<PlaySample> play;
   /// How the play samples were recorded: consecutive chunks of these sizes, each in one scene
   /// (the marked objects where they were for it). Empty when unknown: each sample then stands
-  /// alone. Used to smooth beacon readings within a chunk (TrainConfig::beacon_filter_samples).
+  /// alone. Used to smooth beacon readings within a chunk (TrainConfig::beacon_filter_samples)
+  /// and to pair play samples of one chunk (TrainConfig::play_consistency).
   std::vector<int> play_chunks;
 
   int64_t NumDemoSamples() const;

@@ -4,24 +4,20 @@
 
 namespace recon::learn {
 
-PlayChunks PlayChunks::From(int64_t rows, const std::vector<int>& chunk_sizes) {
+PlayChunks PlayChunks::FromGroups(const std::vector<int32_t>& group) {
+  const int64_t rows = static_cast<int64_t>(group.size());
   PlayChunks chunks;
   chunks.first.resize(static_cast<size_t>(rows));
   chunks.size.resize(static_cast<size_t>(rows));
-  if (chunk_sizes.empty()) {
-    for (int64_t row = 0; row < rows; ++row) {
-      chunks.first[row] = row;
-      chunks.size[row] = 1;
+  int64_t begin = 0;
+  while (begin < rows) {
+    int64_t end = begin + 1;
+    while (end < rows && group[end] == group[begin]) ++end;
+    for (int64_t row = begin; row < end; ++row) {
+      chunks.first[row] = begin;
+      chunks.size[row] = static_cast<int32_t>(end - begin);
     }
-    return chunks;
-  }
-  int64_t first = 0;
-  for (const int size : chunk_sizes) {
-    for (int64_t row = first; row < first + size && row < rows; ++row) {
-      chunks.first[row] = first;
-      chunks.size[row] = size;
-    }
-    first += size;
+    begin = end;
   }
   return chunks;
 }

@@ -24,13 +24,13 @@ namespace recon::learn {
 /// the batch (a fresh network can start there); small against features that carry anything.
 constexpr double kPlayConsistencySpreadFloor = 1e-6;
 
-/// Each play row's chunk (consecutive rows of Dataset::play_chunks; empty chunk sizes: every row
-/// its own chunk) as the first row and size of that chunk, for drawing pairs.
+/// Each play row's chunk as the first row and size of that chunk, for drawing pairs.
 struct PlayChunks {
   std::vector<int64_t> first;  ///< [row]: the chunk's first row
   std::vector<int32_t> size;   ///< [row]: the chunk's number of rows
 
-  static PlayChunks From(int64_t rows, const std::vector<int>& chunk_sizes);
+  /// From each row's chunk id (GroupsOfChunks, beacon_filter.h: rows of a chunk contiguous).
+  static PlayChunks FromGroups(const std::vector<int32_t>& group);
   /// Another row of `row`'s chunk, uniformly (`row` itself only when the chunk has one row).
   int64_t Partner(int64_t row, Rng& rng) const;
 };

@@ -41,11 +41,14 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
   CheckTrainingSetup(data, network, train);
   arch_ = BuildArchitecture(data.spec, network, train.method);
   data_ = TrainingData::From(data, network.image_scale, network.action_chunk);
+  // Which play rows were recorded together (Dataset::play_chunks), for the settings that use it.
+  const std::vector<int32_t> play_groups = train.beacon_filter_samples > 0 || UsesPlayConsistency()
+                                               ? GroupsOfChunks(data_.num_play, data.play_chunks)
+                                               : std::vector<int32_t>{};
   if (train.beacon_filter_samples > 0) {
     const int d = data.spec.b_dim;
     SmoothBeaconRows(data_.demo_b, d, data_.demo_episode, train.beacon_filter_samples);
-    SmoothBeaconRows(data_.play_b, d, GroupsOfChunks(data_.num_play, data.play_chunks),
-                     train.beacon_filter_samples);
+    SmoothBeaconRows(data_.play_b, d, play_groups, train.beacon_filter_samples);
   }
   scaling_ =
       train.standardize_targets ? TargetScaling::Fit(data_) : TargetScaling::Identity(data.spec);
@@ -73,8 +76,8 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
     target_play_.assign(target_b_.size(), 0.0f);
     noise_play_.assign(target_b_.size(), 0.0f);
     grad_play_head_.assign(grad_beacon_head_.size(), 0.0f);
-    if (train.play_consistency > 0) {
-      play_chunks_ = PlayChunks::From(data_.num_play, data.play_chunks);
+    if (UsesPlayConsistency()) {
+      play_chunks_ = PlayChunks::FromGroups(play_groups);
       grad_play_phi_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
     }
   }
@@ -98,6 +101,8 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
 }
 
 bool TrainerImpl::UsesPlay() const { return arch_.has_beacon_net() && data_.num_play > 0; }
+
+bool TrainerImpl::UsesPlayConsistency() const { return UsesPlay() && train_.play_consistency > 0; }
 
 void TrainerImpl::StartAttempt(int attempt) {
   attempt_ = attempt;
@@ -128,7 +133,7 @@ void TrainerImpl::GatherBatch() {
     if (!row_gate_targets_.empty()) batch_gate_targets_[i] = row_gate_targets_[row];
   }
   if (UsesPlay()) {
-    const bool pairs = !grad_play_phi_.empty();  // TrainConfig::play_consistency
+    const bool pairs = UsesPlayConsistency();
     int64_t row = 0;
     for (int i = 0; i < play_.batch; ++i) {
       // With play consistency, rows 2p and 2p + 1 come from one chunk (PlayConsistencyLoss).
@@ -183,7 +188,7 @@ void TrainerImpl::Step() {
   double total = train_.action_weight * m.action_loss;
   if (arch_.has_beacon_net()) total += train_.beacon_weight * m.beacon_loss;
   if (UsesPlay()) total += train_.play_weight * m.play_loss;
-  if (!grad_play_phi_.empty()) total += train_.play_consistency * m.consistency_loss;
+  if (UsesPlayConsistency()) total += train_.play_consistency * m.consistency_loss;
   if (arch_.has_gate()) total += train_.action_weight * m.blind_loss + m.gate_loss;
   m.total_loss = static_cast<float>(total);
 

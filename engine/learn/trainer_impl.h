@@ -70,6 +70,7 @@ class TrainerImpl {
  private:
   void StartAttempt(int attempt);
   bool UsesPlay() const;
+  bool UsesPlayConsistency() const;  ///< TrainConfig::play_consistency, with play data
   bool NeedsRestart();
   void GatherBatch();
   // The backend-specific half of Step (trainer_step.cc): the unweighted losses into `m`, then
@@ -103,8 +104,8 @@ class TrainerImpl {
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
   std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
   std::vector<float> grad_blind_head_;              ///< the feature gate's blind branch
-  /// TrainConfig::play_consistency: each play row's chunk, and the term's gradient on the play
-  /// batch's features. Empty when it is off.
+  /// TrainConfig::play_consistency (UsesPlayConsistency): each play row's chunk, and the term's
+  /// gradient on the play batch's features. Empty when it is off.
   PlayChunks play_chunks_;
   std::vector<float> grad_play_phi_;
   /// GateTarget::kDisagreement: each demonstration row's gate target (fixed before training),

@@ -45,7 +45,7 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
     m.play_loss =
         HeadLoss(train_.loss, play_.beacon_head(), target_play_.data(), noise_play_.data(), batch,
                  s.b_dim, static_cast<float>(train_.play_weight), grad_play_head_.data());
-    if (!grad_play_phi_.empty()) {
+    if (UsesPlayConsistency()) {
       m.consistency_loss =
           PlayConsistencyLoss(play_.phi(), batch, arch_.feature_dim(),
                               static_cast<float>(train_.play_consistency), grad_play_phi_.data());
@@ -100,7 +100,7 @@ void TrainerImpl::FusedBackward() {
            arch_.has_gate() ? grad_blind_head_.data() : nullptr);
   if (UsesPlay()) {
     Backward(arch_, params, nullptr, grad_play_head_.data(), play_, grads_.data(), nullptr,
-             grad_play_phi_.empty() ? nullptr : grad_play_phi_.data());
+             UsesPlayConsistency() ? grad_play_phi_.data() : nullptr);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/learn/beacon_filter.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/play_consistency.h"
@@ -75,7 +76,7 @@ TEST(PlayConsistencyTest, AOneRowBatchHasNoPairAndNoLoss) {
 }
 
 TEST(PlayConsistencyTest, PartnersComeFromTheSameChunkAndAreNeverTheRowItself) {
-  const PlayChunks chunks = PlayChunks::From(7, {3, 1, 3});
+  const PlayChunks chunks = PlayChunks::FromGroups(GroupsOfChunks(7, {3, 1, 3}));
   EXPECT_THAT(chunks.first, ElementsAre(0, 0, 0, 3, 4, 4, 4));
   EXPECT_THAT(chunks.size, ElementsAre(3, 3, 3, 1, 3, 3, 3));
   Rng rng(3);
@@ -95,7 +96,7 @@ TEST(PlayConsistencyTest, PartnersComeFromTheSameChunkAndAreNeverTheRowItself) {
     }
   }
   // Play data whose chunks are unknown: each row is its own.
-  EXPECT_THAT(PlayChunks::From(3, {}).size, ElementsAre(1, 1, 1));
+  EXPECT_THAT(PlayChunks::FromGroups(GroupsOfChunks(3, {})).size, ElementsAre(1, 1, 1));
 }
 
 // The vector task with play data in chunks of 6: within a chunk the beacon's object (y[0], y[1])
