@@ -329,7 +329,13 @@ ImportSummary ImportRobomimic(const std::string& path, const std::string& sessio
       session.DeferIndex(false);
     }
     if (target.has_parent_path()) fs::create_directories(target.parent_path());
-    fs::rename(staging, target);
+    std::error_code renamed;
+    fs::rename(staging, target, renamed);
+    if (renamed) throw UserError("cannot write " + staging + ": " + renamed.message());
+  } catch (const UserError& e) {
+    fs::remove_all(staging, ignored);
+    // The user asked for the session folder, not the staging folder it was built in.
+    throw UserError(NameTheTarget(e.what(), staging, session_dir));
   } catch (...) {
     fs::remove_all(staging, ignored);
     throw;

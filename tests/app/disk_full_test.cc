@@ -25,9 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/learn/learner.h"
-#include "engine/store/h5.h"
 #include "tests/app/run_recon.h"
+#include "tests/app/saved_files.h"
 
 namespace recon {
 namespace {
@@ -35,75 +34,18 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using testing::CommandResult;
+using testing::DirectoryBytes;
 using ::testing::HasSubstr;
+using testing::Incomplete;
 using ::testing::Not;
+using testing::ReadBytes;
 using testing::RunCommand;
 using testing::RunRecon;
+using testing::Snapshot;
 
 // Room to spare on the small file system beyond the session's copy, for the first run.
 constexpr uint64_t kPlenty_bytes = 96ull << 20;
 constexpr uint64_t kPage_bytes = 4096;
-
-std::string ReadBytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// Every regular file under `dir`, by relative path, with its bytes.
-std::map<std::string, std::string> Snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  if (!fs::exists(dir)) return files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_regular_file()) {
-      files[fs::relative(entry.path(), dir).string()] = ReadBytes(entry.path());
-    }
-  }
-  return files;
-}
-
-uint64_t DirectoryBytes(const fs::path& dir) {
-  uint64_t total = 0;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_regular_file()) total += entry.file_size();
-  }
-  return total;
-}
-
-bool EndsWith(const std::string& text, const std::string& tail) {
-  return text.size() >= tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-/// Why `path` is not a complete file of its kind, or "" when it is.
-std::string Incomplete(const fs::path& path) {
-  const std::string name = path.filename().string();
-  const std::string ext = path.extension().string();
-  try {
-    if (ext == ".h5" || ext == ".hdf5") {
-      store::h5::File file = store::h5::File::OpenReadOnly(path.string());
-      store::h5::VerifyChecksums(file, file.id(), {});
-      file.Close();
-    } else if (ext == ".ckpt") {
-      (void)learn::LoadPolicy(path.string());
-    } else if (ext == ".json") {
-      const json parsed = json::parse(ReadBytes(path));
-      if (parsed.is_discarded()) return "unparsable JSON";
-    } else if (ext == ".png") {
-      // A PNG ends with its IEND chunk (the name and its CRC).
-      const std::string bytes = ReadBytes(path);
-      if (!EndsWith(bytes, std::string("IEND\xae\x42\x60\x82", 8))) return "a PNG cut short";
-    } else if (ext == ".html") {
-      if (!EndsWith(ReadBytes(path), "</html>\n")) return "a page cut short";
-    } else if (name == ".lock") {
-      return "";
-    } else {
-      return "a file of a kind this test does not know (" + name + ")";
-    }
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  return "";
-}
 
 /// The file system a run left: its copy, the command's output and exit code.
 struct FullDiskRun {
@@ -299,6 +241,12 @@ TEST_F(DiskFullTest, MarkingAnEpisode) {
 
 TEST_F(DiskFullTest, RepairingALostManifest) {
   WalkFreeSpace(Dynamic(), "session repair @S --world dynamic2d --seed 3", "rm @S/session.json");
+}
+
+TEST_F(DiskFullTest, AnExperimentsResults) {
+  WalkFreeSpace(Dynamic(),
+                "experiment static2d --demos 2 --runs 1 --steps 30 --baseline-steps 30 --tests 2 "
+                "--jobs 1 --out @R/exp");
 }
 
 TEST_F(DiskFullTest, Calibration) {
