@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <cmath>
+#include <filesystem>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "engine/core/error.h"
 
@@ -72,6 +76,106 @@ TEST(UiScriptTest, AScreenshotCannotBeWrittenOutsideItsFolder) {
   EXPECT_NE(ErrorOf("screenshot session.json\n").find(".png"), std::string::npos);
   EXPECT_NE(ErrorOf("screenshot\n").find("needs a file name"), std::string::npos);
   EXPECT_NO_THROW(ParseUiScript("screenshot a/b/c.png\n", "s.script"));
+}
+
+// Seeded random lines, valid and not: each either parses into a step whose numbers are finite
+// and in range and whose screenshot stays inside its folder, or is refused with a UserError that
+// names its line. Nothing else (another exception, a wrapped number, an escaping path) may come
+// out of the parser, whatever a script holds.
+TEST(UiScriptTest, RandomLinesParseInRangeOrAreRefusedNamingTheirLine) {
+  constexpr uint32_t kSeed = 20261204;  // std::mt19937, so every CPU draws the same lines
+  std::mt19937 rng(kSeed);
+  const std::vector<std::string> verbs = {"click", "type",         "press",      "hold", "wait",
+                                          "sleep", "wait-idle",    "screenshot", "Wait", "jump",
+                                          "",      "click\tTrain", "#click"};
+  const std::vector<std::string> tokens = {"0",
+                                           "-0",
+                                           "1",
+                                           "-1",
+                                           "2.5",
+                                           "1e3",
+                                           "1e308",
+                                           "1e999",
+                                           "nan",
+                                           "-nan",
+                                           "inf",
+                                           "0x10",
+                                           "010",
+                                           "+3",
+                                           "3600",
+                                           "3600.01",
+                                           "3601",
+                                           "100000",
+                                           "100001",
+                                           "2147483648",
+                                           "99999999999999999999",
+                                           "",
+                                           " ",
+                                           "up",
+                                           "pageup",
+                                           "sideways",
+                                           "enter 1",
+                                           "x.png",
+                                           "a/b.png",
+                                           "../x.png",
+                                           "a/../../x.png",
+                                           "/tmp/x.png",
+                                           "x.PNG",
+                                           "x.png/..",
+                                           ".png",
+                                           "Train##step",
+                                           "\xff\xfe",
+                                           std::string("a\0b", 3),
+                                           "\x1b[2J"};
+  std::uniform_int_distribution<size_t> pick_verb(0, verbs.size() - 1);
+  std::uniform_int_distribution<size_t> pick_token(0, tokens.size() - 1);
+  std::uniform_int_distribution<int> pick_count(0, 3);
+  int parsed = 0;
+  int refused = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::string line = verbs[pick_verb(rng)];
+    for (int t = pick_count(rng); t > 0; --t) line += " " + tokens[pick_token(rng)];
+    SCOPED_TRACE("seed " + std::to_string(kSeed) + ", line " + std::to_string(i) + ": '" + line +
+                 "'");
+    std::vector<ScriptStep> steps;
+    try {
+      steps = ParseUiScript("# a comment\n" + line + "\n", "s.script");
+    } catch (const UserError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).rfind("s.script:2: ", 0), 0u) << e.what();
+      continue;
+    }
+    ++parsed;
+    for (const ScriptStep& step : steps) {
+      EXPECT_EQ(step.where, "s.script:2: ");
+      EXPECT_TRUE(std::isfinite(step.seconds));
+      EXPECT_GE(step.seconds, 0.0);
+      EXPECT_LE(step.seconds, kMaxScriptSeconds);
+      EXPECT_GE(step.frames, 0);
+      EXPECT_LE(step.frames, kMaxScriptFrames);
+      if (step.verb == ScriptStep::Verb::kHold || step.verb == ScriptStep::Verb::kSleep ||
+          step.verb == ScriptStep::Verb::kWaitIdle) {
+        EXPECT_GT(step.seconds, 0.0);
+      }
+      if (step.verb == ScriptStep::Verb::kPress || step.verb == ScriptStep::Verb::kHold) {
+        EXPECT_GE(step.key, 0);
+      }
+      if (step.verb == ScriptStep::Verb::kClick) {
+        EXPECT_FALSE(step.text.empty());
+      }
+      if (step.verb == ScriptStep::Verb::kScreenshot) {
+        const std::filesystem::path path(step.text);
+        EXPECT_FALSE(path.is_absolute());
+        EXPECT_FALSE(path.has_root_directory());
+        for (const std::filesystem::path& part : path) {
+          EXPECT_NE(part, "..");
+        }
+      }
+    }
+  }
+  // The draw reaches both sides, so neither branch's checks are vacuous.
+  EXPECT_GT(parsed, 1000);
+  EXPECT_GT(refused, 1000);
 }
 
 }  // namespace
