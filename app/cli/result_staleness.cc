@@ -1,8 +1,12 @@
 #include "app/cli/result_staleness.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
+#include "engine/core/digest.h"
 #include "engine/core/strings.h"
 
 namespace recon::cli {
@@ -46,10 +50,41 @@ std::string Counted(const std::vector<std::string>& names) {
   return text;
 }
 
+constexpr const char* kCheckpointIdPrefix = "fnv1a:";
+
+bool IsCheckpointId(const json& id) {
+  return id.is_string() && id.get<std::string>().rfind(kCheckpointIdPrefix, 0) == 0;
+}
+
+// The id of the checkpoint a record names (its "checkpoint", relative to the session).
+std::string IdOfNamedCheckpoint(const store::Session& session, const json& record) {
+  const std::string relative = record.value("checkpoint", std::string());
+  if (relative.empty()) return "";
+  return CheckpointModelId((std::filesystem::path(session.dir()) / relative).string());
+}
+
 }  // namespace
 
+std::string CheckpointModelId(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return kCheckpointIdPrefix + DigestHex(Fnv1a(bytes));
+}
+
 std::string TrainingStaleness(const store::Session& session, const json& training) {
-  if (!training.is_object() || !training.contains("trained_on")) return "";
+  if (!training.is_object()) return "";
+  if (IsCheckpointId(training.value("model_id", json(nullptr)))) {
+    const std::string now = IdOfNamedCheckpoint(session, training);
+    const std::string checkpoint = training.value("checkpoint", std::string());
+    if (now.empty()) return "its model " + checkpoint + " is gone: retrain";
+    if (now != training["model_id"].get<std::string>()) {
+      return checkpoint +
+             " holds another model than this record describes (a training stopped after saving "
+             "its model and before its record): retrain";
+    }
+  }
+  if (!training.contains("trained_on")) return "";
   const json& on = training["trained_on"];
   store::DatasetOptions options;
   options.split = store::Split::kTrain;
@@ -77,9 +112,17 @@ std::string RolloutStaleness(const store::Session& session, const json& rollouts
   if (!rollouts.is_object() || !rollouts.contains("model_id") || rollouts["model_id"].is_null()) {
     return "";  // from before model ids: nothing to compare
   }
-  if (!training.is_object()) return "the model these rollouts are of is gone: retrain";
-  if (training.value("model_id", json(nullptr)) != rollouts["model_id"]) {
-    return "the model was retrained after these rollouts: roll it out again";
+  if (IsCheckpointId(rollouts["model_id"])) {
+    const std::string now = IdOfNamedCheckpoint(session, rollouts);
+    if (now.empty()) return "the model these rollouts are of is gone: retrain";
+    if (now != rollouts["model_id"].get<std::string>()) {
+      return "the model was retrained after these rollouts: roll it out again";
+    }
+  } else {
+    if (!training.is_object()) return "the model these rollouts are of is gone: retrain";
+    if (training.value("model_id", json(nullptr)) != rollouts["model_id"]) {
+      return "the model was retrained after these rollouts: roll it out again";
+    }
   }
   if (TrainingStaleness(session, training).empty()) return "";
   return "rolled out with a model of the session as it was (see its training): retrain and roll "

@@ -13,15 +13,23 @@
 
 namespace recon::cli {
 
-/// Why `training` (a training/<method>.json record) no longer matches what the session would
-/// train on now, e.g. "trained on 6 episodes; since then demo_6 and demo_7 were added"; "" when
-/// it matches, or when the record predates `trained_on` (nothing to compare).
+/// The id of the model a checkpoint holds: "fnv1a:" and a digest of the file's bytes, "" when
+/// there is no such file. A training record and the rollouts of a model carry the id of the
+/// checkpoint they were made with, so a record that outlived its checkpoint (a training killed
+/// between saving its model and its record) is found, not only a record that was replaced.
+std::string CheckpointModelId(const std::string& path);
+
+/// Why `training` (a training/<method>.json record) no longer matches the session: its checkpoint
+/// holds another model than the one it describes, or is gone; or the session would now train on
+/// other episodes, e.g. "trained on 6 episodes; since then demo_6 and demo_7 were added". ""
+/// when it matches, or when the record predates what is compared.
 std::string TrainingStaleness(const store::Session& session, const nlohmann::json& training);
 
 /// Why `rollouts` (a rollouts/<method>.json record) no longer describe the method's model: the
-/// model was retrained after them (its training record has another model_id), or it is missing,
-/// or the model they rolled out is itself out of date (TrainingStaleness). `training` is the
-/// method's training record, null when there is none.
+/// checkpoint now holds another model than the one rolled out (retrained), or is gone, or the
+/// model they rolled out is itself out of date (TrainingStaleness). `training` is the method's
+/// training record, null when there is none. Rollouts from before checkpoint ids are compared
+/// with the training record's id as before.
 std::string RolloutStaleness(const store::Session& session, const nlohmann::json& rollouts,
                              const nlohmann::json& training);
 

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
@@ -62,14 +63,6 @@ double ActionMse(const learn::Policy& policy, const Dataset& data) {
     }
   }
   return sum / static_cast<double>(count);
-}
-
-/// Names one training run: the wall clock in nanoseconds and the seed, so two trainings of the
-/// same method never share it, even with the same seed within a second.
-std::string NewModelId(uint64_t seed) {
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  return std::to_string(std::chrono::duration_cast<std::chrono::nanoseconds>(now).count()) + "-" +
-         std::to_string(seed);
 }
 
 }  // namespace
@@ -193,7 +186,9 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
        {{"episodes", trained_on},
         {"include_bad", options.include_bad},
         {"use_play", recon && !!flags.use_play}}},
-      {"model_id", NewModelId(seed)},
+      // The checkpoint's own digest: a record that outlives its model is found
+      // (result_staleness.h).
+      {"model_id", CheckpointModelId(checkpoint)},
       {"final",
        {{"action_loss", result.final_metrics.action_loss},
         {"beacon_loss", result.final_metrics.beacon_loss},
@@ -223,6 +218,9 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   for (int i = 0; i < tests; ++i) seeds.push_back(Rng::Derive(seed, i));
   const experiments::WorldMaker make_world = [&m] { return MakeSessionWorld(m, "none"); };
   const std::unique_ptr<worlds::World> probe = make_world();
+  // Which model these rollouts are of (read before loading, so a training that replaces the
+  // checkpoint meanwhile makes them out of date rather than mislabelled).
+  const std::string model_id = CheckpointModelId(checkpoint);
   const learn::Policy policy = learn::LoadPolicy(checkpoint);
   const auto start = std::chrono::steady_clock::now();
   std::vector<experiments::ScenarioOutcome> outcomes =
@@ -244,10 +242,6 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
   const std::string label = trained && trained->is_object() && trained->contains("label")
                                 ? (*trained)["label"].get<std::string>()
                                 : method;
-  // Which training these rollouts belong to, so a retrained model marks them out of date.
-  const json model_id = trained && trained->is_object() && trained->contains("model_id")
-                            ? (*trained)["model_id"]
-                            : json(nullptr);
   // The replay goes first: once the JSON names it, it is there. A replay left from an earlier
   // evaluation would show other rollouts than the JSON describes, so it goes when none is kept.
   const fs::path replay_name = fs::path("rollouts") / (method + ".replay.h5");

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "engine/core/digest.h"
 #include "engine/core/error.h"
 
 namespace recon {
@@ -41,8 +42,8 @@ void CheckField(const std::vector<float>& values, int64_t expected, const std::s
   for (size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i])) {
       std::ostringstream msg;
-      msg << where << ": field '" << field << "' element " << i << " is not finite ("
-          << values[i] << ")";
+      msg << where << ": field '" << field << "' element " << i << " is not finite (" << values[i]
+          << ")";
       throw UserError(msg.str());
     }
   }
@@ -95,15 +96,9 @@ void ValidateDataset(const Dataset& dataset, const std::string& source) {
 
 namespace {
 
-class Fnv1a {
+class FingerprintHash {
  public:
-  void Add(const void* data, size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) {
-      hash_ ^= bytes[i];
-      hash_ *= 0x100000001b3ULL;
-    }
-  }
+  void Add(const void* data, size_t size) { hash_ = recon::Fnv1a(data, size, hash_); }
   void Add(const std::vector<float>& v) {
     const uint64_t n = v.size();
     Add(&n, sizeof(n));
@@ -113,13 +108,13 @@ class Fnv1a {
   uint64_t hash() const { return hash_; }
 
  private:
-  uint64_t hash_ = 0xcbf29ce484222325ULL;
+  uint64_t hash_ = kFnv1aOffset;
 };
 
 }  // namespace
 
 uint64_t Fingerprint(const Dataset& dataset) {
-  Fnv1a h;
+  FingerprintHash h;
   const DataSpec& s = dataset.spec;
   h.Add(s.x_dim);
   for (int64_t d : s.y_shape) h.Add(d);

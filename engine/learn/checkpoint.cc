@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "engine/core/digest.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/learn/config_json.h"
@@ -137,20 +138,7 @@ std::string FirstLine(const std::string& text) { return text.substr(0, text.find
 
 // FNV-1a (64 bits) of a byte range, as 16 hex digits: a digest of each entry, so that a flipped
 // bit that leaves a weight finite (or a configuration parseable) is still found on reading.
-std::string Digest(const void* bytes, size_t size) {
-  uint64_t hash = 0xcbf29ce484222325ULL;
-  const auto* p = static_cast<const unsigned char*>(bytes);
-  for (size_t i = 0; i < size; ++i) {
-    hash ^= p[i];
-    hash *= 0x100000001b3ULL;
-  }
-  std::ostringstream text;
-  text << std::hex;
-  text.width(16);
-  text.fill('0');
-  text << hash;
-  return text.str();
-}
+std::string Digest(const void* bytes, size_t size) { return DigestHex(Fnv1a(bytes, size)); }
 std::string Digest(const std::vector<float>& values) {
   return Digest(values.data(), values.size() * sizeof(float));
 }

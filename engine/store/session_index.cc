@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "engine/core/digest.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/store/atomic_file.h"
@@ -46,9 +47,7 @@ std::string IndexFingerprint(const Session& session) {
               (e.flags.bad ? ":bad" : "") + (e.problem.empty() ? "" : ":damaged");
     }
   }
-  uint64_t hash = 0xcbf29ce484222325ULL;
-  for (unsigned char c : text) hash = (hash ^ c) * 0x100000001b3ULL;
-  return std::to_string(hash);
+  return std::to_string(Fnv1a(text));
 }
 
 }  // namespace
