@@ -118,7 +118,16 @@ void Run(StudioFlags flags) {
       driver.SetScreenshotDir(flags.screenshots);
     }
     if (!flags.script.empty()) {
-      driver.RunScript(ReadScript(flags.script), flags.script);
+      try {
+        driver.RunScript(ReadScript(flags.script), flags.script);
+      } catch (...) {
+        // What the screen showed when the script stopped (a failed save, a device gone) is often
+        // why it stopped: print it before the script's own error.
+        for (const std::string& error : controller.Snapshot().errors) {
+          std::fprintf(stderr, "studio: %s\n", error.c_str());
+        }
+        throw;
+      }
     } else {
       driver.WaitFrames(flags.frames);
     }

@@ -1,5 +1,15 @@
-# RECON_SANITIZE turns on AddressSanitizer + UndefinedBehaviorSanitizer for every target.
+# RECON_SANITIZE turns on AddressSanitizer + UndefinedBehaviorSanitizer for every target;
+# RECON_SANITIZE_THREAD turns on ThreadSanitizer (the two cannot be combined). scripts/sanitize
+# builds and runs both.
+if(RECON_SANITIZE AND RECON_SANITIZE_THREAD)
+  message(FATAL_ERROR "RECON_SANITIZE (ASan + UBSan) and RECON_SANITIZE_THREAD (TSan) cannot be "
+                      "combined in one build: use the presets asan and tsan")
+endif()
 if(RECON_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   add_link_options(-fsanitize=address,undefined)
+endif()
+if(RECON_SANITIZE_THREAD)
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=thread)
 endif()

@@ -68,6 +68,7 @@ struct ExperimentFlags {
   double feature_noise = 0.0;     ///< only when --feature-noise was given
   int beacon_filter = -1;         ///< -1: the world's recipe
   double play_consistency = 0.0;  ///< only when --play-consistency was given
+  double nll_min_std = 0.0;       ///< only when --nll-min-std was given
   double feature_gate = 0.0;      ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
@@ -167,6 +168,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       flags.beacon_filter >= 0 ? flags.beacon_filter : recipe.train.beacon_filter_samples;
   config.train.play_consistency =
       given("--play-consistency") ? flags.play_consistency : recipe.train.play_consistency;
+  config.train.nll_min_std = given("--nll-min-std") ? flags.nll_min_std : recipe.train.nll_min_std;
   config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
   config.train.gate_margin = recipe.train.gate_margin;
   if (given("--feature-gate")) {
@@ -386,6 +388,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "beacon placement to agree (0 = off, the paper's RECON; default: the world's "
                    "recipe)")
       ->check(NumberBetween(0, learn::kMaxPlayConsistency));
+  command
+      ->add_option("--nll-min-std", flags->nll_min_std,
+                   "a floor under the standard deviation of the NLL's Gaussian heads, in "
+                   "standardised target units (0 = none, the paper's; default: the world's "
+                   "recipe)")
+      ->check(NumberBetween(0, learn::kMaxNllMinStd));
   CLI::Option* gate =
       command
           ->add_option("--feature-gate", flags->feature_gate,

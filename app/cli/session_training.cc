@@ -176,6 +176,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"learning_rate", train.learning_rate},
       {"feature_dim", flags.feature_dim},
       {"play_consistency", train.play_consistency},
+      {"nll_min_std", train.nll_min_std},
       {"train_demos", data.demos.size()},
       {"train_samples", data.NumDemoSamples()},
       {"play_samples", data.play.size()},

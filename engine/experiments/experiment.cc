@@ -75,6 +75,11 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
                     FormatNumber(learn::kMaxPlayConsistency) + " (got " +
                     FormatNumber(config.train.play_consistency) + ")");
   }
+  if (!std::isfinite(config.train.nll_min_std) || config.train.nll_min_std < 0 ||
+      config.train.nll_min_std > learn::kMaxNllMinStd) {
+    throw UserError("--nll-min-std must be between 0 and " + FormatNumber(learn::kMaxNllMinStd) +
+                    " (got " + FormatNumber(config.train.nll_min_std) + ")");
+  }
   if (!std::isfinite(config.demo_noise) || config.demo_noise < 0 ||
       config.demo_noise > worlds::kMaxDemoNoise) {
     throw UserError("--demo-noise must be between 0 and " + FormatNumber(worlds::kMaxDemoNoise) +

@@ -139,6 +139,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"feature_noise", config.train.feature_noise},
       {"beacon_filter_samples", config.train.beacon_filter_samples},
       {"play_consistency", config.train.play_consistency},
+      {"nll_min_std", config.train.nll_min_std},
       {"gate_margin", config.train.gate_margin},
       {"gate_target", learn::ToString(config.train.gate_target)},
       {"play_per_scenario", config.play_per_scenario}};

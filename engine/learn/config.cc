@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/core/error.h"
 #include "engine/learn/learner.h"
 
 namespace recon::learn {
+
+float TrainConfig::NllMinLogVar() const {
+  if (nll_min_std <= 0) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(2.0 * std::log(nll_min_std));
+}
 
 Method ParseMethod(const std::string& name) {
   if (name == "recon") return Method::kRecon;

@@ -139,6 +139,8 @@ constexpr double kMaxFeatureNoise = 10.0;
 constexpr int kMaxBeaconFilterSamples = 100000;
 /// The largest TrainConfig::play_consistency accepted.
 constexpr double kMaxPlayConsistency = 100.0;
+/// The largest TrainConfig::nll_min_std accepted (in the targets' units).
+constexpr double kMaxNllMinStd = 10.0;
 /// The largest TrainConfig::gate_margin accepted (nats per action).
 constexpr double kMaxGateMargin = 100.0;
 
@@ -202,6 +204,17 @@ struct TrainConfig {
   /// from one chunk each. The Baseline and runs without play data ignore it. 0 = off (results
   /// unchanged); at most kMaxPlayConsistency. Checkpoints from before read 0.
   double play_consistency = 0.0;
+  /// A floor under the standard deviation of every Gaussian head's NLL (LossKind::kNll), in the
+  /// targets' units (standardised ones by default): below it the log-variance is held at the
+  /// floor and gets no gradient. The NLL of a target that repeats exactly (a gripper command
+  /// of 0 or 1) falls without bound as its variance shrinks, so an unfloored head keeps
+  /// sharpening with training and weighs each sample by 1/variance; with 30,000 steps on 20
+  /// tabletop demonstrations the Baseline's loss reached -15 nats and its arm stopped closing
+  /// the gripper (docs/results.md). 0 = no floor (results unchanged); at most kMaxNllMinStd.
+  /// Checkpoints from before read 0.
+  double nll_min_std = 0.0;
+  /// The floor as a log-variance (-infinity without one).
+  float NllMinLogVar() const;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
   /// there (GateTarget::kLoss), or how much the demonstrations must disagree

@@ -9,7 +9,7 @@ constexpr double kLog2Pi = 1.8378770664093453;  // log(2 pi)
 }
 
 float GaussianNll(const float* head, const float* target, int batch, int dim, float weight,
-                  float* grad_head) {
+                  float* grad_head, float min_logvar) {
   double total = 0;
   const float scale = weight / static_cast<float>(batch);
   for (int b = 0; b < batch; ++b) {
@@ -18,13 +18,15 @@ float GaussianNll(const float* head, const float* target, int batch, int dim, fl
     const float* t = target + static_cast<int64_t>(b) * dim;
     for (int d = 0; d < dim; ++d) {
       const float diff = t[d] - mean[d];
-      const float inv_var = std::exp(-logvar[d]);
+      const bool floored = logvar[d] < min_logvar;
+      const float v = floored ? min_logvar : logvar[d];
+      const float inv_var = std::exp(-v);
       const float sq = diff * diff * inv_var;
-      total += 0.5 * (kLog2Pi + logvar[d] + sq);
+      total += 0.5 * (kLog2Pi + v + sq);
       if (grad_head != nullptr) {
         float* g = grad_head + static_cast<int64_t>(b) * 2 * dim;
         g[d] = scale * (-diff * inv_var);
-        g[dim + d] = scale * 0.5f * (1.0f - sq);
+        g[dim + d] = floored ? 0.0f : scale * 0.5f * (1.0f - sq);
       }
     }
   }
@@ -57,9 +59,10 @@ float MseOfSample(const float* head, const float* target, const float* noise, in
 }
 
 float HeadLoss(LossKind kind, const float* head, const float* target, const float* noise, int batch,
-               int dim, float weight, float* grad_head) {
-  return kind == LossKind::kNll ? GaussianNll(head, target, batch, dim, weight, grad_head)
-                                : MseOfSample(head, target, noise, batch, dim, weight, grad_head);
+               int dim, float weight, float* grad_head, float min_logvar) {
+  return kind == LossKind::kNll
+             ? GaussianNll(head, target, batch, dim, weight, grad_head, min_logvar)
+             : MseOfSample(head, target, noise, batch, dim, weight, grad_head);
 }
 
 double SumSquaredMeanError(const float* head, const float* target, int batch, int dim) {

@@ -72,6 +72,11 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     FormatNumber(kMaxPlayConsistency) + " (got " +
                     FormatNumber(train.play_consistency) + ")");
   }
+  if (!std::isfinite(train.nll_min_std) || train.nll_min_std < 0 ||
+      train.nll_min_std > kMaxNllMinStd) {
+    throw UserError("train config: nll_min_std must be between 0 and " +
+                    FormatNumber(kMaxNllMinStd) + " (got " + FormatNumber(train.nll_min_std) + ")");
+  }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +

@@ -37,10 +37,13 @@ at::Tensor Wrap(const float* data, std::vector<int64_t> shape) {
 // Each sample's loss of a [batch][mean | logvar] head, as in losses.cc with a batch of one:
 // the NLL summed over dimensions, the MSE of a sample averaged over them.
 at::Tensor SampleLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
-                      const float* noise) {
+                      const float* noise, float min_logvar) {
   const int64_t d = target.size(1);
-  const at::Tensor mean = head.narrow(1, 0, d), logvar = head.narrow(1, d, d);
+  const at::Tensor mean = head.narrow(1, 0, d);
+  at::Tensor logvar = head.narrow(1, d, d);
   if (kind == LossKind::kNll) {
+    // TrainConfig::nll_min_std: held at the floor, with no gradient below it.
+    if (std::isfinite(min_logvar)) logvar = at::clamp_min(logvar, min_logvar);
     const at::Tensor sq = (target - mean).square() * at::exp(-logvar);
     return (0.5 * ((logvar + kLog2Pi) + sq)).sum(1);
   }
@@ -50,8 +53,8 @@ at::Tensor SampleLoss(LossKind kind, const at::Tensor& head, const at::Tensor& t
 
 // The batch's mean of SampleLoss, as losses.cc.
 at::Tensor HeadLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
-                    const float* noise) {
-  return SampleLoss(kind, head, target, noise).mean();
+                    const float* noise, float min_logvar) {
+  return SampleLoss(kind, head, target, noise, min_logvar).mean();
 }
 
 }  // namespace
@@ -149,6 +152,7 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   const DataSpec& spec = s.arch.spec;
   const int64_t n = batch.demo->batch;
   const LossKind kind = s.train.loss;
+  const float floor = s.train.NllMinLogVar();
 
   const at::Tensor x = Wrap(batch.demo->x.data(), {n, spec.x_dim});
   const at::Tensor phi = s.Features(params, *batch.demo, s.demo_y);
@@ -162,7 +166,7 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   const at::Tensor target_u = Wrap(batch.target_u, {n, s.arch.action_width()});
   const at::Tensor seeing = s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1));
   const double chunk = static_cast<double>(s.arch.network.action_chunk);
-  const at::Tensor seeing_loss = SampleLoss(kind, seeing, target_u, batch.noise_u);
+  const at::Tensor seeing_loss = SampleLoss(kind, seeing, target_u, batch.noise_u, floor);
   // Fixed gate targets route each sample to one branch (GatedActionLoss, trainer_step.cc).
   const bool routed = s.arch.has_gate() && batch.gate_target != nullptr;
   const at::Tensor route = routed ? Wrap(batch.gate_target, {n}) : at::ones({n});
@@ -176,7 +180,8 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
     const at::Tensor blind =
         s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
     const at::Tensor blind_route = routed ? 1.0f - route : at::ones({n});
-    const at::Tensor blind_loss = blind_route * SampleLoss(kind, blind, target_u, batch.noise_u);
+    const at::Tensor blind_loss =
+        blind_route * SampleLoss(kind, blind, target_u, batch.noise_u, floor);
     const at::Tensor target =
         routed ? route
                : ((blind_loss - seeing_loss).detach() / chunk > s.train.gate_margin).to(at::kFloat);
@@ -189,14 +194,15 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   }
   if (s.arch.has_beacon_net()) {
     const at::Tensor beacon = HeadLoss(kind, s.Mlp(s.arch.beacon, params, phi),
-                                       Wrap(batch.target_b, {n, spec.b_dim}), batch.noise_b);
+                                       Wrap(batch.target_b, {n, spec.b_dim}), batch.noise_b, floor);
     total = total + beacon * s.train.beacon_weight;
     metrics.beacon_loss = beacon.item<float>();
   }
   if (batch.play != nullptr) {
     const at::Tensor play_phi = s.Features(params, *batch.play, s.play_y);
-    const at::Tensor play = HeadLoss(kind, s.Mlp(s.arch.beacon, params, play_phi),
-                                     Wrap(batch.target_play, {n, spec.b_dim}), batch.noise_play);
+    const at::Tensor play =
+        HeadLoss(kind, s.Mlp(s.arch.beacon, params, play_phi),
+                 Wrap(batch.target_play, {n, spec.b_dim}), batch.noise_play, floor);
     total = total + play * s.train.play_weight;
     metrics.play_loss = play.item<float>();
     const int64_t pairs = n / 2;

@@ -75,24 +75,24 @@ class FaultWalkTest : public ::testing::Test {
     *run_root = work_ / ("run_" + std::to_string(runs_++));
     fs::remove_all(*run_root);
     fs::create_directories(*run_root);
-    fs::copy(session, *run_root / "s", fs::copy_options::recursive);
+    if (!session.empty()) fs::copy(session, *run_root / "s", fs::copy_options::recursive);
     fs::copy(root_ / "extra", *run_root / "extra", fs::copy_options::recursive);
-    auto sub = [&](const std::string& text) {
-      return Replace(Replace(text, "@S", (*run_root / "s").string()), "@R", run_root->string());
-    };
     if (!prepare.empty()) {
-      const CommandResult prepared = RunCommand(sub(prepare));
+      const CommandResult prepared = RunCommand(Substitute(prepare, *run_root));
       EXPECT_EQ(prepared.exit_code, 0) << prepare << "\n" << prepared.output;
     }
-    return RunCommand(fault_env + " LD_PRELOAD=" + RECON_FAULT_SHIM + " " + RECON_CLI + " " +
-                      sub(args));
+    return RunCommand(fault_env + " LD_PRELOAD=" + RECON_FAULT_SHIM + " " +
+                      Substitute(program_ + " " + args, *run_root));
   }
 
   /// Runs `recon args` again in `run_root` as it was left, without faults.
-  static CommandResult RunAgain(const fs::path& run_root, const std::string& args) {
-    return RunCommand(
-        std::string(RECON_CLI) + " " +
-        Replace(Replace(args, "@S", (run_root / "s").string()), "@R", run_root.string()));
+  CommandResult RunAgain(const fs::path& run_root, const std::string& args) const {
+    return RunCommand(Substitute(program_ + " " + args, run_root));
+  }
+
+  /// `text` with @S for the session copy in `run_root` and @R for `run_root`.
+  static std::string Substitute(const std::string& text, const fs::path& run_root) {
+    return Replace(Replace(text, "@S", (run_root / "s").string()), "@R", run_root.string());
   }
 
   /// The fsync, dirsync and rename calls of one whole run of `recon args` on a copy of `session`.
@@ -124,6 +124,11 @@ class FaultWalkTest : public ::testing::Test {
                              name.find(".importing.") != std::string::npos;
       if (temporary) {
         EXPECT_TRUE(temporaries_allowed) << "a temporary was left: " << name;
+        continue;
+      }
+      // The suite's inputs (extra/) must be as the suite made them.
+      if (name.rfind("extra/", 0) == 0) {
+        EXPECT_EQ(bytes, ReadBytes(root_ / name)) << "an input was changed: " << name;
         continue;
       }
       const std::string in_session = name.rfind("s/", 0) == 0 ? name.substr(2) : "";
@@ -263,6 +268,8 @@ class FaultWalkTest : public ::testing::Test {
   }
 
   static inline fs::path root_;
+  /// The command line run (with @S and @R substituted): `recon` unless a test says otherwise.
+  std::string program_ = RECON_CLI;
   fs::path work_;
   int runs_ = 0;
 };

@@ -86,7 +86,7 @@ std::vector<OptionCase> NumericOptions() {
       cases.push_back({exp, option, true});
     }
     for (const char* option : {"--lr", "--beacon-weight", "--play-weight", "--feature-noise",
-                               "--feature-gate", "--play-consistency"}) {
+                               "--feature-gate", "--play-consistency", "--nll-min-std"}) {
       cases.push_back({exp, option, false});
     }
   }

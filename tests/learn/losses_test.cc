@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -55,6 +56,51 @@ TEST(LossesTest, GaussianNllMatchesClosedFormAndGradient) {
   EXPECT_NEAR(grad[0], (0.5 - 1.0) * std::exp(-0.2) / 2, 1e-6);
   EXPECT_NEAR(HeadLoss(LossKind::kNll, kHead.data(), kTarget.data(), nullptr, 2, 2, 1, nullptr),
               expected, 1e-6 * std::abs(expected));
+}
+
+// TrainConfig::nll_min_std: a log-variance below the floor counts as the floor and gets no
+// gradient; one above it counts as itself. The head's logvars are 0.2, -0.3, -1.5 and 0.7; a
+// floor at -0.5 holds only the third.
+TEST(LossesTest, GaussianNllHoldsALogVarianceBelowTheFloorAtIt) {
+  const float floor = -0.5f;
+  double expected = 0;
+  for (int b = 0; b < 2; ++b) {
+    for (int d = 0; d < 2; ++d) {
+      const double mean = kHead[b * 4 + d], t = kTarget[b * 2 + d];
+      const double logvar = std::max<double>(kHead[b * 4 + 2 + d], floor);
+      expected += 0.5 * (std::log(2 * M_PI) + logvar + (t - mean) * (t - mean) * std::exp(-logvar));
+    }
+  }
+  expected /= 2;
+  std::vector<float> grad(kHead.size());
+  EXPECT_NEAR(GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, grad.data(), floor), expected,
+              1e-6 * std::abs(expected));
+  EXPECT_EQ(grad[6], 0.0f);  // sample 1's first logvar (-1.5) is held at the floor
+  EXPECT_NE(grad[2], 0.0f);  // the others are free
+  EXPECT_NE(grad[7], 0.0f);
+  // The mean's gradient uses the floored variance: (mean - t) * exp(-floor) / batch.
+  EXPECT_NEAR(grad[4], (2.0 - 1.0) * std::exp(0.5) / 2, 1e-6);
+  // Away from the floor's kink, the gradient is the loss's slope.
+  ExpectGradientMatchesDifferences(
+      [floor](const float* head) {
+        return GaussianNll(head, kTarget.data(), 2, 2, 1.0f, nullptr, floor);
+      },
+      grad);
+  // The default is no floor, and HeadLoss passes the floor on.
+  EXPECT_NEAR(
+      HeadLoss(LossKind::kNll, kHead.data(), kTarget.data(), nullptr, 2, 2, 1, nullptr, floor),
+      expected, 1e-6 * std::abs(expected));
+  EXPECT_NE(GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, nullptr),
+            GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, nullptr, floor));
+}
+
+TEST(LossesTest, TheFloorIsTwiceTheLogOfTheStandardDeviationAndOffAtZero) {
+  TrainConfig train;
+  EXPECT_EQ(train.nll_min_std, 0.0);
+  EXPECT_TRUE(std::isinf(train.NllMinLogVar()));
+  EXPECT_LT(train.NllMinLogVar(), 0.0f);
+  train.nll_min_std = 0.1;
+  EXPECT_NEAR(train.NllMinLogVar(), 2.0 * std::log(0.1), 1e-6);
 }
 
 TEST(LossesTest, MseOfSampleMatchesClosedFormAndGradient) {

@@ -123,6 +123,22 @@ std::vector<Case> Cases() {
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
+  // A floor under the NLL's standard deviation (TrainConfig::nll_min_std) above every head's
+  // starting spread (logvar near 0), so it holds from the first step: RECON on images (action,
+  // beacon and play heads), the Baseline on vectors.
+  for (bool image : {true, false}) {
+    Case c;
+    c.name = std::string(image ? "image" : "vector") + " nll-floor";
+    c.data = image ? MakeImageTask(30, 24, 32, 12) : MakeVectorTask(31, 20, 40);
+    if (image) c.network.image_scale = 1.0f / 255.0f;
+    c.train.restart_rule = false;
+    c.train.method = image ? Method::kRecon : Method::kBaseline;
+    c.train.seed = 10;
+    c.train.play_weight = 0.7;
+    c.train.nll_min_std = 2.0;
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   // The feature gate with feature noise under it (NetworkConfig::feature_gate_hidden): RECON on
   // images, the Baseline on vectors.
   for (bool image : {true, false}) {
@@ -183,6 +199,27 @@ TEST(TorchBackendTest, ConfigJsonStoresTheBackendAndOldConfigsReadAsFused) {
   EXPECT_EQ(TrainConfigFromJson(j.dump()).backend, Backend::kFused);
   j["backend"] = "gpu";
   EXPECT_THROW(TrainConfigFromJson(j.dump()), UserError);
+}
+
+TEST(TorchBackendTest, TheNllFloorIsStoredOldConfigsReadNoneAndBadValuesAreRefused) {
+  TrainConfig floored;
+  floored.nll_min_std = 0.25;
+  EXPECT_EQ(TrainConfigFromJson(ToJson(floored)).nll_min_std, 0.25);
+  nlohmann::json j = nlohmann::json::parse(ToJson(floored));
+  j.erase("nll_min_std");  // as written before the setting existed
+  EXPECT_EQ(TrainConfigFromJson(j.dump()).nll_min_std, 0.0);
+  const Dataset data = MakeVectorTask(32, 20, 40);
+  for (double bad : {-0.1, kMaxNllMinStd * 2, std::nan(""), HUGE_VAL}) {
+    TrainConfig train;
+    train.method = Method::kBaseline;
+    train.nll_min_std = bad;
+    try {
+      Trainer trainer(data, NetworkConfig{}, train);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const UserError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("nll_min_std must be between 0 and 10"));
+    }
+  }
 }
 
 TEST(TorchBackendTest, OneStepGivesTheSameGradientAndWeights) {
