@@ -20,27 +20,24 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "tests/app/run_recon.h"
 #include "tests/app/saved_files.h"
+#include "tests/app/walk_checks.h"
 
 namespace recon {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
 using testing::CommandResult;
 using testing::DirectoryBytes;
 using ::testing::HasSubstr;
-using testing::Incomplete;
 using ::testing::Not;
 using testing::ReadBytes;
 using testing::RunCommand;
-using testing::RunRecon;
 using testing::Snapshot;
 
 // Room to spare on the small file system beyond the session's copy, for the first run.
@@ -156,54 +153,17 @@ class DiskFullTest : public ::testing::Test {
         EXPECT_THAT(r.output, HasSubstr("No space left on device"));
         EXPECT_THAT(r.output, Not(HasSubstr(".tmp.")));
       }
-      for (const auto& [name, bytes] : Snapshot(run.root)) {
-        EXPECT_EQ(name.find(".tmp."), std::string::npos) << "a temporary was left: " << name;
-        EXPECT_EQ(name.find(".partial"), std::string::npos) << "a temporary was left: " << name;
-        EXPECT_EQ(name.find(".importing."), std::string::npos) << "a staging folder: " << name;
-        const std::string in_session = name.rfind("s/", 0) == 0 ? name.substr(2) : "";
-        const auto old = before.find(in_session);
-        if (old != before.end() && old->second == bytes) continue;
-        EXPECT_EQ(Incomplete(run.root / name), "") << name;
-      }
-      if (fs::exists(run.root / "s" / "session.json")) {
-        const CommandResult info =
-            RunRecon("session info " + (run.root / "s").string() + " --json");
-        ASSERT_EQ(info.exit_code, 0) << info.output;
-        const json summary = json::parse(info.output.substr(info.output.find('{')));
-        EXPECT_TRUE(summary.value("damaged", json::array()).empty()) << info.output;
-      }
+      testing::ExpectEveryFileOldOrWhole(run.root, before, root_ / "extra",
+                                         /*temporaries_allowed=*/false);
+      if (fs::exists(run.root / "s" / "session.json"))
+        testing::ExpectNoEpisodeDamaged(run.root / "s");
     }
     // The walk must have reached the disk: with nothing free, every command here fails.
     EXPECT_GT(failures, 0) << args << " never ran out of space";
   }
 
-  // The sessions are made on first use (ctest runs each test in a process of its own).
-  static fs::path Dynamic() {
-    const fs::path dir = root_ / "dynamic2d";
-    const std::string d = dir.string();
-    if (!fs::exists(dir)) {
-      MakeSession({"record --session " + d + " --world dynamic2d --demos 3 --play 4 --seed 3",
-                   "train --session " + d + " --methods baseline,recon --steps 50",
-                   "eval --session " + d + " --tests 3",
-                   "session export " + d + " --out " + (root_ / "extra" / "export.hdf5").string()});
-    }
-    return dir;
-  }
-  static fs::path Tabletop() {
-    const fs::path dir = root_ / "tabletop";
-    const std::string d = dir.string();
-    if (!fs::exists(dir)) {
-      MakeSession({"record --session " + d + " --world tabletop --demos 2 --play 2 --seed 2",
-                   "train --session " + d + " --methods baseline --steps 20"});
-    }
-    return dir;
-  }
-  static void MakeSession(const std::vector<std::string>& lines) {
-    for (const std::string& line : lines) {
-      const CommandResult r = RunRecon(line);
-      ASSERT_EQ(r.exit_code, 0) << line << "\n" << r.output;
-    }
-  }
+  static fs::path Dynamic() { return testing::DynamicWalkSession(root_); }
+  static fs::path Tabletop() { return testing::TabletopWalkSession(root_); }
 
   static fs::path root_;
   fs::path work_;

@@ -21,6 +21,7 @@
 #include "engine/core/digest.h"
 #include "tests/app/run_recon.h"
 #include "tests/app/saved_files.h"
+#include "tests/app/walk_checks.h"
 
 namespace recon::testing {
 
@@ -113,29 +114,11 @@ class FaultWalkTest : public ::testing::Test {
     return counts;
   }
 
-  /// What a run may leave behind: each file as it was in `before` (the session's files, by path
-  /// inside it) or complete. Temporaries are reported unless `temporaries_allowed`.
+  /// What a run may leave behind (walk_checks.h), the suite's inputs unchanged.
   static void ExpectEveryFileOldOrWhole(const fs::path& run_root,
                                         const std::map<std::string, std::string>& before,
                                         bool temporaries_allowed) {
-    for (const auto& [name, bytes] : Snapshot(run_root)) {
-      const bool temporary = name.find(".tmp.") != std::string::npos ||
-                             name.find(".partial") != std::string::npos ||
-                             name.find(".importing.") != std::string::npos;
-      if (temporary) {
-        EXPECT_TRUE(temporaries_allowed) << "a temporary was left: " << name;
-        continue;
-      }
-      // The suite's inputs (extra/) must be as the suite made them.
-      if (name.rfind("extra/", 0) == 0) {
-        EXPECT_EQ(bytes, ReadBytes(root_ / name)) << "an input was changed: " << name;
-        continue;
-      }
-      const std::string in_session = name.rfind("s/", 0) == 0 ? name.substr(2) : "";
-      const auto old = before.find(in_session);
-      if (old != before.end() && old->second == bytes) continue;
-      EXPECT_EQ(Incomplete(run_root / name), "") << name;
-    }
+    testing::ExpectEveryFileOldOrWhole(run_root, before, root_ / "extra", temporaries_allowed);
   }
 
   /// The session in `run_root`, if it has a manifest, opens and has no damaged episode; and no
@@ -143,10 +126,7 @@ class FaultWalkTest : public ::testing::Test {
   /// another model than the one they name (a save of several files cut between them).
   static void ExpectSessionWhole(const fs::path& run_root) {
     if (!fs::exists(run_root / "s" / "session.json")) return;
-    const CommandResult info = RunRecon("session info " + (run_root / "s").string() + " --json");
-    ASSERT_EQ(info.exit_code, 0) << info.output;
-    const json summary = json::parse(info.output.substr(info.output.find('{')));
-    EXPECT_TRUE(summary.value("damaged", json::array()).empty()) << info.output;
+    const json summary = ExpectNoEpisodeDamaged(run_root / "s");
     for (const char* kind : {"training", "rollouts"}) {
       if (!summary.contains(kind) || !summary[kind].is_object()) continue;
       for (const auto& [method, record] : summary[kind].items()) {
@@ -239,33 +219,8 @@ class FaultWalkTest : public ::testing::Test {
     }
   }
 
-  // The sessions are made on first use (ctest runs each test in a process of its own).
-  static fs::path Dynamic() {
-    const fs::path dir = root_ / "dynamic2d";
-    const std::string d = dir.string();
-    if (!fs::exists(dir)) {
-      MakeSession({"record --session " + d + " --world dynamic2d --demos 3 --play 4 --seed 3",
-                   "train --session " + d + " --methods baseline,recon --steps 50",
-                   "eval --session " + d + " --tests 3",
-                   "session export " + d + " --out " + (root_ / "extra" / "export.hdf5").string()});
-    }
-    return dir;
-  }
-  static fs::path Tabletop() {
-    const fs::path dir = root_ / "tabletop";
-    const std::string d = dir.string();
-    if (!fs::exists(dir)) {
-      MakeSession({"record --session " + d + " --world tabletop --demos 2 --play 2 --seed 2",
-                   "train --session " + d + " --methods baseline --steps 20"});
-    }
-    return dir;
-  }
-  static void MakeSession(const std::vector<std::string>& lines) {
-    for (const std::string& line : lines) {
-      const CommandResult r = RunRecon(line);
-      ASSERT_EQ(r.exit_code, 0) << line << "\n" << r.output;
-    }
-  }
+  static fs::path Dynamic() { return DynamicWalkSession(root_); }
+  static fs::path Tabletop() { return TabletopWalkSession(root_); }
 
   static inline fs::path root_;
   /// The command line run (with @S and @R substituted): `recon` unless a test says otherwise.
