@@ -26,7 +26,9 @@ JobThread::~JobThread() {
 
 bool JobThread::Running() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return state_.running || state_.finish != nullptr || work_ != nullptr;
+  // A failed job's error counts as a result: until it is taken and shown, the screens still
+  // show the job running, and a script's wait-idle that ended there clicked on that stale view.
+  return state_.running || state_.finish != nullptr || !state_.error.empty() || work_ != nullptr;
 }
 
 std::string JobThread::RunningName() const {

@@ -41,52 +41,79 @@ struct KillStats {
   int play_chunks_seen = 0;
 };
 
-/// Wall seconds of one uninterrupted `recon record` with `record_args`, recording into `scratch`
-/// instead of the session the args name. The kills are placed in fractions of this, so that
-/// they land in the run's commits however loaded the machine is (a fixed window missed them all
-/// when other tests shared the CPU).
-double SecondsOfOneRun(std::vector<std::string> record_args, const fs::path& scratch) {
+/// Files under the session's episodes/ and play/ folders, committed or half-written: how far a
+/// run has got.
+int EpisodeFiles(const fs::path& dir) {
+  int count = 0;
+  for (const char* folder : {"episodes", "play"}) {
+    std::error_code error;  // a folder not created yet, or a file renamed while listed
+    for (fs::directory_iterator it(dir / folder, error), end; !error && it != end;
+         it.increment(error)) {
+      ++count;
+    }
+  }
+  return count;
+}
+
+/// The files one uninterrupted `recon record` with `record_args` writes, recording into `scratch`
+/// instead of the session the args name. Kills are placed at a drawn number of these, not at a
+/// time: a window timed from one run missed the later commits when other tests shared the CPU.
+int FilesOfOneRun(std::vector<std::string> record_args, const fs::path& scratch) {
   for (size_t i = 0; i + 1 < record_args.size(); ++i) {
     if (record_args[i] == "--session") record_args[i + 1] = scratch.string();
   }
   fs::remove_all(scratch);
-  const auto start = std::chrono::steady_clock::now();
   const pid_t pid = SpawnRecon(record_args);
   int status = 0;
   waitpid(pid, &status, 0);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const int files = EpisodeFiles(scratch);
   fs::remove_all(scratch);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the timing run failed";
-  return seconds;
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the reference run failed";
+  EXPECT_GT(files, 0) << "the reference run wrote no episode";
+  return files;
 }
 
-/// Kills `recon record` `kills` times at delays drawn from [min_s, max_s) and checks the session
-/// after each kill against `expected_demo` / `expected_play` (the reference for a demo or play
-/// number and size).
+/// Whether `pid` has ended, without reaping it (so that its pid cannot be reused before the
+/// test's kill and waitpid).
+bool HasEnded(pid_t pid) {
+  siginfo_t info{};
+  return waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+         info.si_pid == pid;
+}
+
+/// Kills `recon record` `kills` times, each when the run has written a drawn number of files in
+/// [0, files_per_run + 1] (0: in start-up; past the run's end: a completed run), and checks the
+/// session after each kill against `expected_demo` / `expected_play` (the reference for a demo
+/// or play number and size). The file that takes the count to its target is often still being
+/// written, so many kills land in a commit in progress.
 /// (void so that gtest's ASSERTs can stop it; the statistics come back through `stats`.)
 template <typename ExpectedDemo, typename ExpectedPlay>
 void KillRepeatedly(const fs::path& dir, const std::vector<std::string>& record_args, int kills,
-                    double min_s, double max_s, uint64_t seed, const ExpectedDemo& expected_demo,
+                    int files_per_run, uint64_t seed, const ExpectedDemo& expected_demo,
                     const ExpectedPlay& expected_play, KillStats& stats, int min_mid_commit = 0) {
   Rng rng(seed);
   std::set<std::string> committed;  // names seen after earlier kills: they must survive
   // Episodes whose data was compared with the reference. Recording never rewrites a committed
   // file, so each is compared when it first appears and once more after the last kill.
   std::set<std::string> verified;
-  // Where a kill lands depends on the machine's load: past `kills`, keep killing (up to three
-  // times as often) until `min_mid_commit` of them have hit a commit in progress.
+  // Past `kills`, keep killing (up to three times as often) until `min_mid_commit` of them have
+  // hit a commit in progress.
   for (int k = 0; k < kills || (stats.mid_commit < min_mid_commit && k < 3 * kills); ++k) {
+    const int before = EpisodeFiles(dir);
+    const int target = static_cast<int>(rng.Uniform(0.0, files_per_run + 2.0));
     const pid_t pid = SpawnRecon(record_args);
-    const double delay_s = rng.Uniform(min_s, max_s);
-    std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
+    while (EpisodeFiles(dir) - before < target && !HasEnded(pid)) {
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
     kill(pid, SIGKILL);
     int status = 0;
     waitpid(pid, &status, 0);
+    const std::string at = "kill " + std::to_string(k) + " (at file " + std::to_string(target) +
+                           " of " + std::to_string(files_per_run) + ")";
     ++stats.kills;
     stats.mid_commit += TemporaryFiles(dir) > 0;
     if (!store::Session::Exists(dir.string())) {
-      EXPECT_TRUE(committed.empty()) << "kill " << k << ": the session's manifest disappeared";
+      EXPECT_TRUE(committed.empty()) << at << ": the session's manifest disappeared";
       continue;  // killed before the session was created
     }
     const store::Session session = store::Session::Open(dir.string());
@@ -94,12 +121,11 @@ void KillRepeatedly(const fs::path& dir, const std::vector<std::string>& record_
     for (const auto* list : {&session.demos(), &session.play_chunks()}) {
       for (const store::EpisodeEntry& e : *list) {
         now.insert(e.name);
-        ASSERT_TRUE(e.problem.empty())
-            << "kill " << k << " (after " << delay_s << " s) left a damaged episode: " << e.problem;
+        ASSERT_TRUE(e.problem.empty()) << at << " left a damaged episode: " << e.problem;
       }
     }
     for (const std::string& name : committed) {
-      EXPECT_TRUE(now.count(name)) << "kill " << k << " lost " << name;
+      EXPECT_TRUE(now.count(name)) << at << " lost " << name;
     }
     committed = now;
     for (const store::EpisodeEntry& e : session.demos()) {
@@ -158,24 +184,22 @@ TEST(CrashSafetyTest, KillNineWhileRecordingLosesAtMostTheEpisodeInProgress) {
   fs::remove_all(dir);
   const std::unique_ptr<worlds::World> world = worlds::MakeWorld("dynamic2d", "exact", 0.0, false);
   Reference reference{*world, 5};
-  // A run of 100 demonstrations and 60 play samples takes about 1 s with start-up (Torch's
-  // libraries alone take ~0.6 s to load); kills land anywhere in it, start-up included, and
-  // some after it ended (a completed run).
+  // A run of 100 demonstrations and 60 play samples (120 files); kills land anywhere in it,
+  // start-up included, and some after it ended (a completed run).
   const std::vector<std::string> args = {"record",    "--session", dir.string(), "--world",
                                          "dynamic2d", "--demos",   "100",        "--play",
                                          "60",        "--seed",    "5"};
-  const double run_s = SecondsOfOneRun(args, dir.string() + "-timing");
+  const int files = FilesOfOneRun(args, dir.string() + "-reference");
   KillStats stats;
   KillRepeatedly(
-      dir, args,
-      /*kills=*/30, 0.55 * run_s, 1.1 * run_s, /*seed=*/0xC4A5,
+      dir, args, /*kills=*/30, files, /*seed=*/0xC4A5,
       [&](int n) -> const Episode& { return reference.Demo(n); },
       [&](int n, int64_t size) { return reference.Play(n, size); }, stats,
       /*min_mid_commit=*/3);
   std::printf(
       "dynamic2d: %d kills, %d in the middle of a commit; %d demonstrations and %d play "
-      "chunks committed and intact (a whole run took %.2f s; kill delays seeded 0xC4A5)\n",
-      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, run_s);
+      "chunks committed and intact (a whole run writes %d files; kill points seeded 0xC4A5)\n",
+      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, files);
   EXPECT_GT(stats.episodes_seen, 0);
   EXPECT_GT(stats.play_chunks_seen, 0);
   // The test is only worth something if kills hit commits in progress.
@@ -199,17 +223,16 @@ TEST(CrashSafetyTest, KillNineWhileRecordingCameraEpisodes) {
                                          // The reference below records one scenario per seed
                                          // with exact beacons and no injected noise.
                                          "--layout", "wide", "--noise", "0", "--demo-noise", "0"};
-  const double run_s = SecondsOfOneRun(args, dir.string() + "-timing");
+  const int files = FilesOfOneRun(args, dir.string() + "-reference");
   KillStats stats;
   KillRepeatedly(
-      dir, args,
-      /*kills=*/5, 0.25 * run_s, 0.6 * run_s, /*seed=*/0x7AB1E,
+      dir, args, /*kills=*/5, files, /*seed=*/0x7AB1E,
       [&](int n) -> const Episode& { return reference.Demo(n); },
       [&](int n, int64_t size) { return reference.Play(n, size); }, stats);
   std::printf(
       "tabletop: %d kills, %d in the middle of a commit; %d demonstrations and %d play "
-      "chunks committed and intact (a whole run took %.2f s; kill delays seeded 0x7AB1E)\n",
-      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, run_s);
+      "chunks committed and intact (a whole run writes %d files; kill points seeded 0x7AB1E)\n",
+      stats.kills, stats.mid_commit, stats.episodes_seen, stats.play_chunks_seen, files);
   EXPECT_GT(stats.episodes_seen, 0);
   fs::remove_all(dir);
 }

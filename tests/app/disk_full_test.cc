@@ -18,7 +18,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -26,6 +25,7 @@
 
 #include "tests/app/run_recon.h"
 #include "tests/app/saved_files.h"
+#include "tests/app/small_disk.h"
 #include "tests/app/walk_checks.h"
 
 namespace recon {
@@ -33,75 +33,14 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::CommandResult;
-using testing::DirectoryBytes;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using testing::ReadBytes;
-using testing::RunCommand;
+using testing::FullDiskRun;
+using testing::SmallDisk;
 using testing::Snapshot;
 
-// Room to spare on the small file system beyond the session's copy, for the first run.
-constexpr uint64_t kPlenty_bytes = 96ull << 20;
 constexpr uint64_t kPage_bytes = 4096;
-
-/// The file system a run left: its copy, the command's output and exit code.
-struct FullDiskRun {
-  CommandResult result;
-  fs::path root;  ///< a copy of the small file system after the run (the filler removed)
-};
-
-/// One small file system: a session at ROOT/s and whatever `extra` holds at ROOT/extra.
-class SmallDisk {
- public:
-  SmallDisk(fs::path session, fs::path extra, fs::path work)
-      : session_(std::move(session)), extra_(std::move(extra)), work_(std::move(work)) {}
-
-  /// Runs `recon args` with `free_bytes` left free after `prepare` (a shell line run in the
-  /// small file system first). In `args` and `prepare`, @S is the session and @R the root.
-  FullDiskRun Run(const std::string& args, uint64_t free_bytes, const std::string& prepare = "",
-                  const std::string& label = "") {
-    const fs::path out = work_ / ("run_" + label + std::to_string(runs_++));
-    fs::remove_all(out);
-    const fs::path script = work_ / "run.sh";
-    std::ofstream(script) << R"sh(set -u
-m=$(mktemp -d /tmp/recon_disk_full.XXXXXX)
-trap 'umount "$m" 2>/dev/null; rmdir "$m" 2>/dev/null' EXIT
-mount -t tmpfs -o size=$SIZE tmpfs "$m" || { echo "cannot mount a tmpfs (the test needs root or a user namespace)"; exit 90; }
-cp -a "$SESSION" "$m/s"
-if [ -d "$EXTRA" ]; then cp -a "$EXTRA" "$m/extra"; fi
-sub() { local t=${1//@S/$m/s}; echo "${t//@R/$m}"; }
-eval "$(sub "$PREPARE")"
-avail=$(( $(stat -f -c '%a*%S' "$m") ))
-if [ "$avail" -gt "$FREE" ]; then fallocate -l $(( avail - FREE )) "$m/filler" || exit 91; fi
-eval "\"$RECON\" $(sub "$ARGS")" > "$OUT.output" 2>&1
-echo $? > "$OUT.rc"
-sed -i "s#$m#<root>#g" "$OUT.output"
-rm -f "$m/filler"
-cp -a "$m" "$OUT"
-)sh";
-    const uint64_t size = DirectoryBytes(session_) +
-                          (fs::exists(extra_) ? DirectoryBytes(extra_) : 0) + kPlenty_bytes;
-    const std::string env = "SIZE=" + std::to_string(size) + " SESSION='" + session_.string() +
-                            "' EXTRA='" + extra_.string() + "' FREE=" + std::to_string(free_bytes) +
-                            " OUT='" + out.string() + "' RECON='" + RECON_CLI + "' ARGS='" + args +
-                            "' PREPARE='" + prepare + "'";
-    const CommandResult shell =
-        RunCommand(env + " unshare --mount --propagation private bash " + script.string());
-    FullDiskRun run;
-    run.root = out;
-    if (!fs::exists(out.string() + ".rc")) {
-      run.result = {-1, "the small file system could not be set up: " + shell.output};
-      return run;
-    }
-    run.result.exit_code = std::stoi(ReadBytes(out.string() + ".rc"));
-    run.result.output = ReadBytes(out.string() + ".output");
-    return run;
-  }
-
- private:
-  fs::path session_, extra_, work_;
-  int runs_ = 0;
-};
 
 /// Each test gets a folder of its own and two sessions: a Dynamic 2D one (3 demonstrations,
 /// play data, both methods trained and evaluated) and a tabletop one with camera images.
@@ -126,7 +65,7 @@ class DiskFullTest : public ::testing::Test {
                      const std::string& prepare = "") {
     SmallDisk disk(session, root_ / "extra", work_);
     const std::map<std::string, std::string> before = Snapshot(session);
-    const FullDiskRun roomy = disk.Run(args, kPlenty_bytes / 2, prepare, "roomy_");
+    const FullDiskRun roomy = disk.Run(args, SmallDisk::kPlentyBytes / 2, prepare, "roomy_");
     ASSERT_EQ(roomy.result.exit_code, 0) << args << "\n" << roomy.result.output;
     // What the command writes: every file new or changed in the session, and beside it.
     uint64_t written = 0;

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "tests/app/fault_walk.h"
+#include "tests/app/studio_teaching_script.h"
 
 namespace recon {
 namespace {
@@ -29,28 +30,14 @@ using ::testing::Not;
 // middle and last rename (a whole session through the studio takes 10-20 s a run).
 int StudioPoints(const std::string& kind) { return kind == "rename" ? 3 : 2; }
 
-constexpr const char* kScript =
-    "click Beacons##step\nclick object:plate\nwait-idle 30\n"
-    "click Calibrate##step\nclick Collect points and fit\nwait-idle 300\n"
-    "click Record##step\nclick Start recording\nwait-idle 300\n"
-    "click Play data##step\nclick Record 30 play samples\nwait-idle 120\n"
-    "click Train##step\nclick Train Baseline and RECON\nwait-idle 600\n"
-    "click Rollouts##step\nclick Run rollouts\nwait-idle 600\n"
-    "click Report##step\nclick Write the report\nwait-idle 120\n";
-
 class StudioFaultTest : public testing::FaultWalkTest {
  protected:
   void SetUp() override {
     FaultWalkTest::SetUp();
-    std::ofstream(root_ / "extra" / "teach.script") << kScript;
-    // The studio keeps its home, temporary files and list of recent sessions in the run's folder.
-    program_ =
-        std::string("HOME=@R/home XDG_CONFIG_HOME=@R/config MESA_SHADER_CACHE_DISABLE=true ") +
-        RECON_STUDIO;
+    std::ofstream(root_ / "extra" / "teach.script") << testing::kStudioTeachingScript;
+    program_ = std::string(testing::kStudioEnvironment) + RECON_STUDIO;
   }
-  static constexpr const char* kArgs =
-      "--headless --fast --session @S --train-steps 20 --rollout-tests 2 --script "
-      "@R/extra/teach.script";
+  static constexpr const char* kArgs = testing::kStudioTeachingArgs;
 };
 
 TEST_F(StudioFaultTest, AFailingFlushOrRenameIsShownAndLeavesEverySavedFileWhole) {

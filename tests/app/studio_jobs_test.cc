@@ -6,10 +6,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "app/studio/job_thread.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
 #include "tests/app/run_recon.h"
@@ -70,6 +75,30 @@ TEST(StudioJobsTest, AFailingMethodIsReportedAndTheOtherKeepsItsCheckpoint) {
   EXPECT_FALSE(views[1].running);
   EXPECT_TRUE(fs::exists(dir / "checkpoints" / "baseline.ckpt"));
   EXPECT_FALSE(fs::exists(dir / "checkpoints" / "nonsense.ckpt"));
+}
+
+// Running() covers a job until its result is taken, a failure's included: the studio looks
+// idle only once the screens can show how the job ended (a full disk made a failed training
+// look idle while the screen still said "Training now").
+TEST(StudioJobsTest, AJobCountsAsRunningUntilItsResultOrErrorIsTaken) {
+  JobThread jobs;
+  for (const bool fails : {false, true}) {
+    SCOPED_TRACE(fails ? "a job that fails" : "a job that succeeds");
+    std::atomic<bool> release{false};
+    jobs.Start("training", [&](JobThread&) -> std::function<void()> {
+      while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      if (fails) throw UserError("No space left on device");
+      return [] {};
+    });
+    EXPECT_TRUE(jobs.Running());
+    release = true;
+    while (jobs.Peek().running) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    EXPECT_TRUE(jobs.Running()) << "over, but its result not taken yet";
+    const JobState taken = jobs.Take();
+    EXPECT_EQ(taken.error.empty(), !fails);
+    EXPECT_EQ(taken.finish == nullptr, fails);
+    EXPECT_FALSE(jobs.Running());
+  }
 }
 
 }  // namespace
