@@ -69,6 +69,7 @@ struct ExperimentFlags {
   int beacon_filter = -1;         ///< -1: the world's recipe
   double play_consistency = 0.0;  ///< only when --play-consistency was given
   double nll_min_std = 0.0;       ///< only when --nll-min-std was given
+  double gripper_min_std = 0.0;   ///< only when --gripper-min-std was given
   double feature_gate = 0.0;      ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
@@ -169,6 +170,16 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.train.play_consistency =
       given("--play-consistency") ? flags.play_consistency : recipe.train.play_consistency;
   config.train.nll_min_std = given("--nll-min-std") ? flags.nll_min_std : recipe.train.nll_min_std;
+  config.train.action_min_std = recipe.train.action_min_std;
+  if (given("--gripper-min-std")) {
+    if (flags.world != "tabletop") {
+      throw UserError("--gripper-min-std: the " + flags.world +
+                      " world has no gripper command (use --nll-min-std)");
+    }
+    // u = the arm's joint velocities, then the gripper command.
+    config.train.action_min_std.assign(worlds::Ur5Arm::kJoints + 1, 0.0);
+    config.train.action_min_std[worlds::Ur5Arm::kJoints] = flags.gripper_min_std;
+  }
   config.network.feature_gate_hidden = recipe.network.feature_gate_hidden;
   config.train.gate_margin = recipe.train.gate_margin;
   if (given("--feature-gate")) {
@@ -253,9 +264,15 @@ void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOpti
       config.world.c_str(), config.conditions.size(), config.demos.size(), config.runs, total,
       config.tests, static_cast<unsigned long long>(config.seed), config.jobs, global.threads);
   std::fflush(stdout);
+  std::printf("each finished run is kept in %s until the results are written\n",
+              (fs::path(out) / experiments::kRunsSoFarFile).c_str());
+  std::fflush(stdout);
   ProgressLine progress("training", total);
+  std::vector<experiments::RunResult> finished;  // the runner calls back one run at a time
   const experiments::ExperimentResult result =
       experiments::RunExperiment(config, [&](const experiments::RunResult& r) {
+        finished.push_back(r);
+        experiments::WriteRunsSoFar(finished, out);
         char detail[128];
         std::snprintf(detail, sizeof(detail), "%s demos %d run %d: %.3f", r.condition.c_str(),
                       r.demos, r.run, r.metric);
@@ -393,6 +410,11 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "a floor under the standard deviation of the NLL's Gaussian heads, in "
                    "standardised target units (0 = none, the paper's; default: the world's "
                    "recipe)")
+      ->check(NumberBetween(0, learn::kMaxNllMinStd));
+  command
+      ->add_option("--gripper-min-std", flags->gripper_min_std,
+                   "tabletop: a floor like --nll-min-std under the policy's spread of the gripper "
+                   "command alone, the joints' untouched (0 = none; default: the world's recipe)")
       ->check(NumberBetween(0, learn::kMaxNllMinStd));
   CLI::Option* gate =
       command

@@ -177,6 +177,7 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
       {"feature_dim", flags.feature_dim},
       {"play_consistency", train.play_consistency},
       {"nll_min_std", train.nll_min_std},
+      {"action_min_std", train.action_min_std},
       {"train_demos", data.demos.size()},
       {"train_samples", data.NumDemoSamples()},
       {"play_samples", data.play.size()},

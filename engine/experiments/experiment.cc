@@ -264,6 +264,7 @@ ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver
                              : nullptr;
       try {
         results[i] = RunOne(config, task, test_seeds, curve, cancel);
+        results[i].has_success = out.has_success;
         std::lock_guard<std::mutex> lock(mutex);
         if (on_run) on_run(results[i]);
       } catch (...) {

@@ -42,10 +42,11 @@ struct RunResult {
   std::string condition;
   int demos = 0;
   int run = 0;
-  uint64_t data_seed = 0;   ///< seeds the run's demonstration scenarios
-  uint64_t train_seed = 0;  ///< seeds initialisation, batches and sampling noise
-  double metric = 0;        ///< mean episode metric over the test scenarios
-  double success_rate = 0;  ///< fraction of test scenarios solved (worlds with HasSuccess())
+  uint64_t data_seed = 0;    ///< seeds the run's demonstration scenarios
+  uint64_t train_seed = 0;   ///< seeds initialisation, batches and sampling noise
+  double metric = 0;         ///< mean episode metric over the test scenarios
+  double success_rate = 0;   ///< fraction of test scenarios solved (worlds with HasSuccess())
+  bool has_success = false;  ///< ExperimentResult::has_success: success_rate means something
   std::map<std::string, double> details;  ///< World::OutcomeDetails() means over test scenarios
   int64_t demo_samples = 0;  ///< samples in the run's demonstrations (they may stop early)
   int attempts = 1;

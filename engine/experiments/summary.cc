@@ -1,11 +1,13 @@
 #include "engine/experiments/summary.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "engine/core/files.h"
 #include "engine/core/stats.h"
@@ -18,21 +20,21 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string ResultsCsv(const ExperimentResult& result) {
+std::string ResultsCsv(const std::vector<RunResult>& runs, bool has_success) {
   // Each run's outcome details (World::OutcomeDetails: grasped, closest_approach_m, ...) as
   // columns: the means in summary.json hide whether a run failed in every scene or in a few.
   std::set<std::string> detail_keys;
-  for (const RunResult& r : result.runs) {
+  for (const RunResult& r : runs) {
     for (const auto& [key, value] : r.details) detail_keys.insert(key);
   }
   std::ostringstream csv;
   csv << "condition,demos,run,data_seed,train_seed,metric,attempts,train_steps,train_seconds,"
          "final_action_loss,final_beacon_loss,final_play_loss,final_consistency_loss"
-      << (result.has_success ? ",success_rate" : "");
+      << (has_success ? ",success_rate" : "");
   for (const std::string& key : detail_keys) csv << "," << key;
   csv << "\n";
   char buf[512];
-  for (const RunResult& r : result.runs) {
+  for (const RunResult& r : runs) {
     std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.3f,%.6g,%.6g,%.6g,%.6g",
                   r.condition.c_str(), r.demos, r.run, static_cast<unsigned long long>(r.data_seed),
                   static_cast<unsigned long long>(r.train_seed), r.metric, r.attempts,
@@ -40,7 +42,7 @@ std::string ResultsCsv(const ExperimentResult& result) {
                   r.final_losses.beacon_loss, r.final_losses.play_loss,
                   r.final_losses.consistency_loss);
     csv << buf;
-    if (result.has_success) csv << "," << r.success_rate;
+    if (has_success) csv << "," << r.success_rate;
     for (const std::string& key : detail_keys) {
       const auto it = r.details.find(key);
       csv << ",";
@@ -140,6 +142,7 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
       {"beacon_filter_samples", config.train.beacon_filter_samples},
       {"play_consistency", config.train.play_consistency},
       {"nll_min_std", config.train.nll_min_std},
+      {"action_min_std", config.train.action_min_std},
       {"gate_margin", config.train.gate_margin},
       {"gate_target", learn::ToString(config.train.gate_target)},
       {"play_per_scenario", config.play_per_scenario}};
@@ -353,8 +356,10 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
   }
 
   const std::string csv = (root / "results.csv").string();
-  WriteFileAtomically(csv, ResultsCsv(result));
+  WriteFileAtomically(csv, ResultsCsv(result.runs, result.has_success));
   written.push_back(csv);
+  std::error_code ignored;  // the runs so far are in results.csv now
+  fs::remove(root / kRunsSoFarFile, ignored);
   // summary.json last: its presence marks a complete result folder.
   const std::string summary = (root / "summary.json").string();
   json summary_json = SummaryJson(config, result, summaries);
@@ -364,6 +369,14 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
   WriteFileAtomically(summary, summary_json.dump(2) + "\n");
   written.push_back(summary);
   return written;
+}
+
+void WriteRunsSoFar(std::vector<RunResult> finished, const std::string& dir) {
+  std::sort(finished.begin(), finished.end(), [](const RunResult& a, const RunResult& b) {
+    return std::tie(a.demos, a.condition, a.run) < std::tie(b.demos, b.condition, b.run);
+  });
+  const bool has_success = !finished.empty() && finished.front().has_success;
+  WriteFileAtomically((fs::path(dir) / kRunsSoFarFile).string(), ResultsCsv(finished, has_success));
 }
 
 }  // namespace recon::experiments

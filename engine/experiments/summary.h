@@ -39,4 +39,13 @@ std::vector<std::string> WriteExperimentOutputs(const ExperimentConfig& config,
                                                 const ExperimentResult& result,
                                                 const std::string& dir);
 
+/// Where an experiment keeps the runs it has finished while it runs (WriteRunsSoFar).
+constexpr const char* kRunsSoFarFile = "runs_so_far.csv";
+
+/// Writes, atomically, `dir`/runs_so_far.csv: the runs finished so far, one row each as
+/// results.csv has them (seeds included), in (demos, condition, run) order. Called after every
+/// run, so an experiment killed or failed after an hour keeps every run it finished;
+/// WriteExperimentOutputs removes the file once results.csv is in place.
+void WriteRunsSoFar(std::vector<RunResult> finished, const std::string& dir);
+
 }  // namespace recon::experiments

@@ -14,6 +14,16 @@ float TrainConfig::NllMinLogVar() const {
   return static_cast<float>(2.0 * std::log(nll_min_std));
 }
 
+std::vector<float> TrainConfig::PolicyMinLogVar(int u_dim, int chunk) const {
+  std::vector<float> floors(static_cast<size_t>(u_dim) * chunk, NllMinLogVar());
+  if (action_min_std.empty()) return floors;
+  for (size_t j = 0; j < floors.size(); ++j) {
+    const double s = action_min_std[j % u_dim];
+    if (s > 0) floors[j] = std::max(floors[j], static_cast<float>(2.0 * std::log(s)));
+  }
+  return floors;
+}
+
 Method ParseMethod(const std::string& name) {
   if (name == "recon") return Method::kRecon;
   if (name == "baseline") return Method::kBaseline;

@@ -213,8 +213,18 @@ struct TrainConfig {
   /// the gripper (docs/results.md). 0 = no floor (results unchanged); at most kMaxNllMinStd.
   /// Checkpoints from before read 0.
   double nll_min_std = 0.0;
-  /// The floor as a log-variance (-infinity without one).
+  /// A floor like nll_min_std under the policy head's standard deviation of single actions
+  /// (indices into u, every action of a chunk): empty (the default) = none, else one value per
+  /// action, 0 = none for that action. The tabletop's gripper command (0 or 1, repeated exactly
+  /// within each phase) is where the spread collapses; its joint velocities are continuous, and
+  /// a floor on every dimension blurs them too (docs/results.md). Where both are set the higher
+  /// floor holds. Each at most kMaxNllMinStd. Checkpoints from before read empty.
+  std::vector<double> action_min_std;
+  /// The floor nll_min_std as a log-variance (-infinity without one).
   float NllMinLogVar() const;
+  /// Per dimension of the policy head's mean (chunk x u_dim, as the training targets): the
+  /// log-variance floor from nll_min_std and action_min_std.
+  std::vector<float> PolicyMinLogVar(int u_dim, int chunk) const;
   /// With a feature gate (NetworkConfig::feature_gate_hidden): how much the features must lower
   /// a sample's action loss (per action; nats under the NLL) for the gate to learn to open
   /// there (GateTarget::kLoss), or how much the demonstrations must disagree

@@ -9,7 +9,7 @@ constexpr double kLog2Pi = 1.8378770664093453;  // log(2 pi)
 }
 
 float GaussianNll(const float* head, const float* target, int batch, int dim, float weight,
-                  float* grad_head, float min_logvar) {
+                  float* grad_head, const float* min_logvar) {
   double total = 0;
   const float scale = weight / static_cast<float>(batch);
   for (int b = 0; b < batch; ++b) {
@@ -18,8 +18,8 @@ float GaussianNll(const float* head, const float* target, int batch, int dim, fl
     const float* t = target + static_cast<int64_t>(b) * dim;
     for (int d = 0; d < dim; ++d) {
       const float diff = t[d] - mean[d];
-      const bool floored = logvar[d] < min_logvar;
-      const float v = floored ? min_logvar : logvar[d];
+      const bool floored = min_logvar != nullptr && logvar[d] < min_logvar[d];
+      const float v = floored ? min_logvar[d] : logvar[d];
       const float inv_var = std::exp(-v);
       const float sq = diff * diff * inv_var;
       total += 0.5 * (kLog2Pi + v + sq);
@@ -59,7 +59,7 @@ float MseOfSample(const float* head, const float* target, const float* noise, in
 }
 
 float HeadLoss(LossKind kind, const float* head, const float* target, const float* noise, int batch,
-               int dim, float weight, float* grad_head, float min_logvar) {
+               int dim, float weight, float* grad_head, const float* min_logvar) {
   return kind == LossKind::kNll
              ? GaussianNll(head, target, batch, dim, weight, grad_head, min_logvar)
              : MseOfSample(head, target, noise, batch, dim, weight, grad_head);

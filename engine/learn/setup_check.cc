@@ -77,6 +77,22 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
     throw UserError("train config: nll_min_std must be between 0 and " +
                     FormatNumber(kMaxNllMinStd) + " (got " + FormatNumber(train.nll_min_std) + ")");
   }
+  if (!train.action_min_std.empty()) {
+    if (static_cast<int>(train.action_min_std.size()) != data.spec.u_dim) {
+      throw UserError("train config: action_min_std has " +
+                      std::to_string(train.action_min_std.size()) +
+                      " values, but the actions have " + std::to_string(data.spec.u_dim) +
+                      " (one per action, or none)");
+    }
+    for (size_t a = 0; a < train.action_min_std.size(); ++a) {
+      const double v = train.action_min_std[a];
+      if (!std::isfinite(v) || v < 0 || v > kMaxNllMinStd) {
+        throw UserError("train config: action_min_std[" + std::to_string(a) +
+                        "] must be between 0 and " + FormatNumber(kMaxNllMinStd) + " (got " +
+                        FormatNumber(v) + ")");
+      }
+    }
+  }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +

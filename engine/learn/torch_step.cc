@@ -17,6 +17,7 @@
 #include <c10/core/GradMode.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -37,13 +38,14 @@ at::Tensor Wrap(const float* data, std::vector<int64_t> shape) {
 // Each sample's loss of a [batch][mean | logvar] head, as in losses.cc with a batch of one:
 // the NLL summed over dimensions, the MSE of a sample averaged over them.
 at::Tensor SampleLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
-                      const float* noise, float min_logvar) {
+                      const float* noise, const at::Tensor& min_logvar) {
   const int64_t d = target.size(1);
   const at::Tensor mean = head.narrow(1, 0, d);
   at::Tensor logvar = head.narrow(1, d, d);
   if (kind == LossKind::kNll) {
-    // TrainConfig::nll_min_std: held at the floor, with no gradient below it.
-    if (std::isfinite(min_logvar)) logvar = at::clamp_min(logvar, min_logvar);
+    // TrainConfig::nll_min_std, action_min_std: held at the floor (one per dimension), with no
+    // gradient below it.
+    if (min_logvar.defined()) logvar = at::maximum(logvar, min_logvar);
     const at::Tensor sq = (target - mean).square() * at::exp(-logvar);
     return (0.5 * ((logvar + kLog2Pi) + sq)).sum(1);
   }
@@ -53,8 +55,16 @@ at::Tensor SampleLoss(LossKind kind, const at::Tensor& head, const at::Tensor& t
 
 // The batch's mean of SampleLoss, as losses.cc.
 at::Tensor HeadLoss(LossKind kind, const at::Tensor& head, const at::Tensor& target,
-                    const float* noise, float min_logvar) {
+                    const float* noise, const at::Tensor& min_logvar) {
   return SampleLoss(kind, head, target, noise, min_logvar).mean();
+}
+
+// Per-dimension floors as a tensor, or an undefined one where no dimension has a floor.
+at::Tensor Floors(const std::vector<float>& min_logvar) {
+  const bool any =
+      std::any_of(min_logvar.begin(), min_logvar.end(), [](float v) { return std::isfinite(v); });
+  if (!any) return {};
+  return Wrap(min_logvar.data(), {static_cast<int64_t>(min_logvar.size())}).clone();
 }
 
 }  // namespace
@@ -64,6 +74,8 @@ struct TorchStep::Impl {
   TrainConfig train;
   at::Tensor demo_y, play_y;    ///< the batch's y rows gathered (the trainer holds pointers)
   at::Tensor x_coord, y_coord;  ///< spatial softmax only: [h * w] coordinates of each position
+  /// The NLL's log-variance floors per dimension (Floors): the policy head's, the beacon net's.
+  at::Tensor policy_min_logvar, beacon_min_logvar;
 
   // Per step: the parameter leaves in layout order, and the weighted loss to differentiate.
   std::vector<at::Tensor> leaves;
@@ -125,6 +137,10 @@ TorchStep::TorchStep(const Architecture& arch, const TrainConfig& train)
   shape.insert(shape.begin(), train.batch_size);
   impl_->demo_y = at::empty(shape, at::kFloat);
   impl_->play_y = at::empty(shape, at::kFloat);
+  impl_->policy_min_logvar =
+      Floors(train.PolicyMinLogVar(arch.spec.u_dim, arch.network.action_chunk));
+  impl_->beacon_min_logvar =
+      Floors(std::vector<float>(static_cast<size_t>(arch.spec.b_dim), train.NllMinLogVar()));
   if (arch.spatial_softmax) {
     const SpatialSoftmaxLayer& k = arch.keypoints;
     const std::vector<float> xs = KeypointCoordinates(k.w), ys = KeypointCoordinates(k.h);
@@ -152,7 +168,6 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   const DataSpec& spec = s.arch.spec;
   const int64_t n = batch.demo->batch;
   const LossKind kind = s.train.loss;
-  const float floor = s.train.NllMinLogVar();
 
   const at::Tensor x = Wrap(batch.demo->x.data(), {n, spec.x_dim});
   const at::Tensor phi = s.Features(params, *batch.demo, s.demo_y);
@@ -166,7 +181,8 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   const at::Tensor target_u = Wrap(batch.target_u, {n, s.arch.action_width()});
   const at::Tensor seeing = s.Mlp(s.arch.policy, params, at::cat({x, policy_phi}, 1));
   const double chunk = static_cast<double>(s.arch.network.action_chunk);
-  const at::Tensor seeing_loss = SampleLoss(kind, seeing, target_u, batch.noise_u, floor);
+  const at::Tensor seeing_loss =
+      SampleLoss(kind, seeing, target_u, batch.noise_u, s.policy_min_logvar);
   // Fixed gate targets route each sample to one branch (GatedActionLoss, trainer_step.cc).
   const bool routed = s.arch.has_gate() && batch.gate_target != nullptr;
   const at::Tensor route = routed ? Wrap(batch.gate_target, {n}) : at::ones({n});
@@ -181,7 +197,7 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
         s.Mlp(s.arch.policy, params, at::cat({x, at::zeros_like(policy_phi)}, 1));
     const at::Tensor blind_route = routed ? 1.0f - route : at::ones({n});
     const at::Tensor blind_loss =
-        blind_route * SampleLoss(kind, blind, target_u, batch.noise_u, floor);
+        blind_route * SampleLoss(kind, blind, target_u, batch.noise_u, s.policy_min_logvar);
     const at::Tensor target =
         routed ? route
                : ((blind_loss - seeing_loss).detach() / chunk > s.train.gate_margin).to(at::kFloat);
@@ -193,8 +209,9 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
     metrics.gate_mean = at::sigmoid(logit).mean().item<float>();
   }
   if (s.arch.has_beacon_net()) {
-    const at::Tensor beacon = HeadLoss(kind, s.Mlp(s.arch.beacon, params, phi),
-                                       Wrap(batch.target_b, {n, spec.b_dim}), batch.noise_b, floor);
+    const at::Tensor beacon =
+        HeadLoss(kind, s.Mlp(s.arch.beacon, params, phi), Wrap(batch.target_b, {n, spec.b_dim}),
+                 batch.noise_b, s.beacon_min_logvar);
     total = total + beacon * s.train.beacon_weight;
     metrics.beacon_loss = beacon.item<float>();
   }
@@ -202,7 +219,7 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
     const at::Tensor play_phi = s.Features(params, *batch.play, s.play_y);
     const at::Tensor play =
         HeadLoss(kind, s.Mlp(s.arch.beacon, params, play_phi),
-                 Wrap(batch.target_play, {n, spec.b_dim}), batch.noise_play, floor);
+                 Wrap(batch.target_play, {n, spec.b_dim}), batch.noise_play, s.beacon_min_logvar);
     total = total + play * s.train.play_weight;
     metrics.play_loss = play.item<float>();
     const int64_t pairs = n / 2;

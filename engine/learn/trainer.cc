@@ -66,6 +66,8 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
   target_u_.assign(static_cast<size_t>(batch) * arch_.action_width(), 0.0f);
   noise_u_.assign(target_u_.size(), 0.0f);
   grad_policy_head_.assign(2 * target_u_.size(), 0.0f);
+  policy_min_logvar_ = train.PolicyMinLogVar(s.u_dim, network.action_chunk);
+  beacon_min_logvar_.assign(static_cast<size_t>(s.b_dim), train.NllMinLogVar());
   if (arch_.has_beacon_net()) {
     target_b_.assign(static_cast<size_t>(batch) * s.b_dim, 0.0f);
     noise_b_.assign(target_b_.size(), 0.0f);

@@ -102,6 +102,9 @@ class TrainerImpl {
   std::vector<float> target_u_, target_b_, target_play_;
   std::vector<float> noise_u_, noise_b_, noise_play_;
   std::vector<float> grad_policy_head_, grad_beacon_head_, grad_play_head_;
+  /// The NLL's log-variance floors per dimension of the policy and beacon heads' means
+  /// (TrainConfig::PolicyMinLogVar, NllMinLogVar).
+  std::vector<float> policy_min_logvar_, beacon_min_logvar_;
   std::vector<float> feature_noise_, phi_offsets_;  ///< TrainConfig::feature_noise draws, offsets
   std::vector<float> grad_blind_head_;              ///< the feature gate's blind branch
   /// TrainConfig::play_consistency (UsesPlayConsistency): each play row's chunk, and the term's

@@ -30,21 +30,21 @@ void TrainerImpl::FusedForward(StepMetrics& m) {
     m.action_loss =
         HeadLoss(train_.loss, demo_.policy_head(), target_u_.data(), noise_u_.data(), batch,
                  arch_.action_width(), static_cast<float>(train_.action_weight) / chunk,
-                 grad_policy_head_.data(), train_.NllMinLogVar()) /
+                 grad_policy_head_.data(), policy_min_logvar_.data()) /
         chunk;
   }
   if (arch_.has_beacon_net()) {
     ForwardBeacon(arch_, params, demo_);
     m.beacon_loss = HeadLoss(train_.loss, demo_.beacon_head(), target_b_.data(), noise_b_.data(),
                              batch, s.b_dim, static_cast<float>(train_.beacon_weight),
-                             grad_beacon_head_.data(), train_.NllMinLogVar());
+                             grad_beacon_head_.data(), beacon_min_logvar_.data());
   }
   if (UsesPlay()) {
     ForwardFeatures(arch_, params, play_);
     ForwardBeacon(arch_, params, play_);
     m.play_loss = HeadLoss(
         train_.loss, play_.beacon_head(), target_play_.data(), noise_play_.data(), batch, s.b_dim,
-        static_cast<float>(train_.play_weight), grad_play_head_.data(), train_.NllMinLogVar());
+        static_cast<float>(train_.play_weight), grad_play_head_.data(), beacon_min_logvar_.data());
     if (UsesPlayConsistency()) {
       m.consistency_loss =
           PlayConsistencyLoss(play_.phi(), batch, arch_.feature_dim(),
@@ -72,11 +72,11 @@ float TrainerImpl::GatedActionLoss(StepMetrics& m) {
     const float route = routed ? batch_gate_targets_[b] : 1.0f;
     const float seeing = HeadLoss(train_.loss, demo_.seeing_head() + head, target_u_.data() + row,
                                   noise_u_.data() + row, 1, width, weight * route,
-                                  grad_policy_head_.data() + head, train_.NllMinLogVar());
+                                  grad_policy_head_.data() + head, policy_min_logvar_.data());
     const float blind_route = routed ? 1.0f - route : 1.0f;
     const float blind = HeadLoss(train_.loss, demo_.blind_head() + head, target_u_.data() + row,
                                  noise_u_.data() + row, 1, width, weight * blind_route,
-                                 grad_blind_head_.data() + head, train_.NllMinLogVar());
+                                 grad_blind_head_.data() + head, policy_min_logvar_.data());
     seeing_sum += route * seeing;
     blind_sum += blind_route * blind;
     const float target =

@@ -203,9 +203,26 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
   // The wide layout has no configurations: an odd count is fine there (checked, not run).
   const CommandResult wide = RunRecon(
       "experiment tabletop --layout wide --runs 1 --tests 1 --demos 1 --steps 2 --baseline-steps 2 "
-      "--image-size 32 --conditions baseline --out " +
+      "--image-size 32 --conditions baseline --gripper-min-std 0.2 --out " +
       (out / "wide").string());
   EXPECT_EQ(wide.exit_code, 0) << wide.output;
+  // The gripper's floor is the last action's (u = six joint velocities, then the gripper).
+  const nlohmann::json train = ReadJson(out / "wide" / "summary.json")["train"];
+  EXPECT_EQ(train["action_min_std"], nlohmann::json({0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.2}));
+}
+
+// The gripper's floor names the worlds without a gripper command.
+TEST(CellCliTest, AGripperFloorOutsideTheTabletopIsRefused) {
+  const fs::path out = FreshDir("gripper_floor");
+  for (const char* world : {"dynamic2d", "static2d", "bintransfer"}) {
+    const CommandResult r =
+        RunRecon(std::string("experiment ") + world +
+                 " --runs 1 --tests 1 --gripper-min-std 0.1 --out " + (out / world).string());
+    EXPECT_EQ(r.exit_code, 2) << world << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--gripper-min-std: the " + std::string(world) +
+                                    " world has no gripper command"));
+    EXPECT_FALSE(fs::exists(out / world / "summary.json")) << world;
+  }
 }
 
 TEST(CellCliTest, TabletopImageSizeOutOfRangeIsRejected) {

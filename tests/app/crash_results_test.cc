@@ -1,5 +1,6 @@
 // Crash safety of what a session derives from its episodes: `recon train`, `recon eval`,
-// `recon report` and `recon session export` are killed with SIGKILL at seeded moments. After
+// `recon report` and `recon session export` are killed with SIGKILL at seeded moments (and an
+// experiment once runs have finished: AKilledExperimentKeepsEveryRunItFinished). After
 // every kill the session's episodes and manifest are byte for byte as before, and every derived
 // file is the old one or a complete new one: a checkpoint is bitwise the old or the one an
 // uninterrupted run writes (training is deterministic per seed), a result is parsable JSON, the
@@ -15,6 +16,7 @@
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -161,6 +163,68 @@ TEST(CrashSafetyTest, KillNineDuringTrainEvalReportOrExportLeavesEveryFileOldOrW
   EXPECT_EQ(TemporaryFiles(session), 0);
   EXPECT_EQ(TemporaryFiles(root), 0);
   std::printf("%d kills across train, eval, report and export (delays seeded 0xD1E5)\n", kills);
+  fs::remove_all(root);
+}
+
+/// Lines of a text file (none if it does not exist).
+std::vector<std::string> Lines(const fs::path& path) {
+  std::vector<std::string> lines;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// An experiment killed after an hour must not take the runs it finished with it: each finished
+// run is in runs_so_far.csv (written whole after every run) until results.csv replaces it.
+// Killed as soon as the first run's row is there, and once more when the second's is: the rows
+// kept are whole, seeded, and the same as the complete experiment's.
+TEST(CrashSafetyTest, AKilledExperimentKeepsEveryRunItFinished) {
+  const fs::path root = fs::temp_directory_path() / ("recon-crash-exp-" + std::to_string(getpid()));
+  fs::remove_all(root);
+  const auto args = [&](const std::string& out) {
+    // Runs long enough (about a second each) that a kill seen to follow a row's write lands
+    // before the next run ends.
+    return std::vector<std::string>{
+        "experiment",       "static2d", "--demos",      "2",
+        "--runs",           "4",        "--steps",      "600",
+        "--baseline-steps", "600",      "--tests",      "2",
+        "--jobs",           "1",        "--conditions", "baseline",
+        "--seed",           "4",        "--out",        (root / out).string()};
+  };
+  ASSERT_EQ(RunToEnd(args("complete")), 0);
+  const std::vector<std::string> complete = Lines(root / "complete" / "results.csv");
+  ASSERT_EQ(complete.size(), 5u) << "a header and 4 runs";
+  EXPECT_FALSE(fs::exists(root / "complete" / "runs_so_far.csv"))
+      << "the runs so far outlived the complete results";
+  for (const size_t rows : {1u, 2u}) {
+    SCOPED_TRACE("killed once " + std::to_string(rows) + " run(s) had finished");
+    const fs::path out = root / ("killed_" + std::to_string(rows));
+    const fs::path partial = out / "runs_so_far.csv";
+    const pid_t pid = SpawnRecon(args(out.filename().string()));
+    siginfo_t ended{};  // polled without reaping, so the pid stays the child's until killed
+    while (Lines(partial).size() < rows + 1 &&
+           !(waitid(P_PID, static_cast<id_t>(pid), &ended, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+             ended.si_pid == pid)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    const std::vector<std::string> kept = Lines(partial);
+    ASSERT_GE(kept.size(), rows + 1);
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    for (size_t i = 0; i < kept.size(); ++i) {
+      // Seeds, metric, losses, the training time: identical but for the seconds trained.
+      const auto without_seconds = [](const std::string& row) {
+        std::vector<std::string> fields;
+        std::string field;
+        for (std::istringstream in(row); std::getline(in, field, ',');) fields.push_back(field);
+        if (fields.size() > 8) fields.erase(fields.begin() + 8);  // train_seconds
+        return fields;
+      };
+      EXPECT_EQ(without_seconds(kept[i]), without_seconds(complete[i])) << "row " << i;
+    }
+  }
   fs::remove_all(root);
 }
 

@@ -85,8 +85,9 @@ std::vector<OptionCase> NumericOptions() {
                                "--random-shift", "--action-chunk", "--beacon-filter", "--seed"}) {
       cases.push_back({exp, option, true});
     }
-    for (const char* option : {"--lr", "--beacon-weight", "--play-weight", "--feature-noise",
-                               "--feature-gate", "--play-consistency", "--nll-min-std"}) {
+    for (const char* option :
+         {"--lr", "--beacon-weight", "--play-weight", "--feature-noise", "--feature-gate",
+          "--play-consistency", "--nll-min-std", "--gripper-min-std"}) {
       cases.push_back({exp, option, false});
     }
   }

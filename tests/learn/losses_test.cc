@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace recon::learn {
@@ -62,12 +63,13 @@ TEST(LossesTest, GaussianNllMatchesClosedFormAndGradient) {
 // gradient; one above it counts as itself. The head's logvars are 0.2, -0.3, -1.5 and 0.7; a
 // floor at -0.5 holds only the third.
 TEST(LossesTest, GaussianNllHoldsALogVarianceBelowTheFloorAtIt) {
-  const float floor = -0.5f;
+  const float floor_value = -0.5f;
+  const float floor[2] = {floor_value, floor_value};
   double expected = 0;
   for (int b = 0; b < 2; ++b) {
     for (int d = 0; d < 2; ++d) {
       const double mean = kHead[b * 4 + d], t = kTarget[b * 2 + d];
-      const double logvar = std::max<double>(kHead[b * 4 + 2 + d], floor);
+      const double logvar = std::max<double>(kHead[b * 4 + 2 + d], floor_value);
       expected += 0.5 * (std::log(2 * M_PI) + logvar + (t - mean) * (t - mean) * std::exp(-logvar));
     }
   }
@@ -82,7 +84,7 @@ TEST(LossesTest, GaussianNllHoldsALogVarianceBelowTheFloorAtIt) {
   EXPECT_NEAR(grad[4], (2.0 - 1.0) * std::exp(0.5) / 2, 1e-6);
   // Away from the floor's kink, the gradient is the loss's slope.
   ExpectGradientMatchesDifferences(
-      [floor](const float* head) {
+      [&floor](const float* head) {
         return GaussianNll(head, kTarget.data(), 2, 2, 1.0f, nullptr, floor);
       },
       grad);
@@ -92,6 +94,54 @@ TEST(LossesTest, GaussianNllHoldsALogVarianceBelowTheFloorAtIt) {
       expected, 1e-6 * std::abs(expected));
   EXPECT_NE(GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, nullptr),
             GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, nullptr, floor));
+}
+
+// TrainConfig::action_min_std: floors per dimension. A floor on dimension 1 only (above both of
+// its logvars, -0.3 and 0.7) leaves dimension 0's terms and gradients exactly as without one.
+TEST(LossesTest, GaussianNllFloorsEachDimensionByItsOwnFloor) {
+  const float none = -std::numeric_limits<float>::infinity();
+  const float floor[2] = {none, 1.0f};
+  std::vector<float> free_grad(kHead.size()), grad(kHead.size());
+  const float free_loss = GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, free_grad.data());
+  const float loss = GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, grad.data(), floor);
+  double expected = 0;
+  for (int b = 0; b < 2; ++b) {
+    for (int d = 0; d < 2; ++d) {
+      const double mean = kHead[b * 4 + d], t = kTarget[b * 2 + d];
+      const double logvar = d == 1 ? 1.0 : kHead[b * 4 + 2 + d];
+      expected += 0.5 * (std::log(2 * M_PI) + logvar + (t - mean) * (t - mean) * std::exp(-logvar));
+    }
+  }
+  EXPECT_NEAR(loss, expected / 2, 1e-6 * std::abs(expected));
+  EXPECT_NE(loss, free_loss);
+  for (int b = 0; b < 2; ++b) {
+    EXPECT_EQ(grad[b * 4 + 0], free_grad[b * 4 + 0]) << b;  // dimension 0's mean
+    EXPECT_EQ(grad[b * 4 + 2], free_grad[b * 4 + 2]) << b;  // and its logvar
+    EXPECT_EQ(grad[b * 4 + 3], 0.0f) << b;                  // dimension 1's logvar is held
+    EXPECT_NE(grad[b * 4 + 1], free_grad[b * 4 + 1]) << b;  // its mean weighed by exp(-1)
+  }
+  // Floors of -infinity everywhere are no floors, bitwise.
+  const float nones[2] = {none, none};
+  EXPECT_EQ(GaussianNll(kHead.data(), kTarget.data(), 2, 2, 1.0f, nullptr, nones), free_loss);
+}
+
+// The policy head's floors: one per dimension of a chunk of actions (u_dim actions per chunk
+// step, as the training targets are laid out), the higher of nll_min_std and action_min_std.
+TEST(LossesTest, PolicyFloorsRepeatEachActionsFloorOverTheChunk) {
+  TrainConfig train;
+  for (float v : train.PolicyMinLogVar(3, 2)) EXPECT_TRUE(std::isinf(v) && v < 0);
+  EXPECT_EQ(train.PolicyMinLogVar(3, 2).size(), 6u);
+  train.action_min_std = {0.0, 0.0, 0.2};  // the last action only
+  const std::vector<float> floors = train.PolicyMinLogVar(3, 2);
+  ASSERT_EQ(floors.size(), 6u);
+  for (int j : {0, 1, 3, 4}) EXPECT_TRUE(std::isinf(floors[j])) << j;
+  for (int j : {2, 5}) EXPECT_NEAR(floors[j], 2.0 * std::log(0.2), 1e-6) << j;
+  train.nll_min_std = 0.1;  // under the action's floor there, alone elsewhere
+  const std::vector<float> both = train.PolicyMinLogVar(3, 2);
+  for (int j : {0, 1, 3, 4}) EXPECT_NEAR(both[j], 2.0 * std::log(0.1), 1e-6) << j;
+  for (int j : {2, 5}) EXPECT_NEAR(both[j], 2.0 * std::log(0.2), 1e-6) << j;
+  train.nll_min_std = 0.5;  // above it: the higher floor holds
+  for (float v : train.PolicyMinLogVar(3, 2)) EXPECT_NEAR(v, 2.0 * std::log(0.5), 1e-6);
 }
 
 TEST(LossesTest, TheFloorIsTwiceTheLogOfTheStandardDeviationAndOffAtZero) {

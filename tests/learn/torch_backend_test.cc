@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <iterator>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/malloc_tuning.h"
@@ -139,6 +142,21 @@ std::vector<Case> Cases() {
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
+  // A floor on one action only (TrainConfig::action_min_std), over chunks of 2 actions, so the
+  // floors repeat per chunk step: the second action's above its starting spread, the first free.
+  for (bool image : {true, false}) {
+    Case c;
+    c.name = std::string(image ? "image" : "vector") + " action-floor";
+    c.data = image ? MakeImageTask(34, 24, 32, 12) : MakeVectorTask(35, 20, 40);
+    if (image) c.network.image_scale = 1.0f / 255.0f;
+    c.network.action_chunk = 2;
+    c.train.restart_rule = false;
+    c.train.method = image ? Method::kRecon : Method::kBaseline;
+    c.train.seed = 12;
+    c.train.action_min_std = {0.0, 2.0};
+    c.train.steps = 1000;
+    cases.push_back(std::move(c));
+  }
   // The feature gate with feature noise under it (NetworkConfig::feature_gate_hidden): RECON on
   // images, the Baseline on vectors.
   for (bool image : {true, false}) {
@@ -218,6 +236,34 @@ TEST(TorchBackendTest, TheNllFloorIsStoredOldConfigsReadNoneAndBadValuesAreRefus
       ADD_FAILURE() << "accepted " << bad;
     } catch (const UserError& e) {
       EXPECT_THAT(e.what(), HasSubstr("nll_min_std must be between 0 and 10"));
+    }
+  }
+}
+
+TEST(TorchBackendTest, PerActionFloorsAreStoredOldConfigsReadNoneAndBadValuesAreRefused) {
+  TrainConfig floored;
+  floored.action_min_std = {0.0, 0.3};
+  EXPECT_EQ(TrainConfigFromJson(ToJson(floored)).action_min_std, floored.action_min_std);
+  nlohmann::json j = nlohmann::json::parse(ToJson(floored));
+  j.erase("action_min_std");  // as written before the setting existed
+  EXPECT_TRUE(TrainConfigFromJson(j.dump()).action_min_std.empty());
+  const Dataset data = MakeVectorTask(32, 20, 40);  // two actions
+  const std::vector<std::pair<std::vector<double>, std::string>> bad = {
+      {{0.1}, "action_min_std has 1 values, but the actions have 2"},
+      {{0.1, 0.1, 0.1}, "action_min_std has 3 values, but the actions have 2"},
+      {{0.0, -0.1}, "action_min_std[1] must be between 0 and 10 (got -0.1)"},
+      {{kMaxNllMinStd * 2, 0.0}, "action_min_std[0] must be between 0 and 10 (got 20)"},
+      {{std::nan(""), 0.0}, "action_min_std[0] must be between 0 and 10"},
+      {{0.0, HUGE_VAL}, "action_min_std[1] must be between 0 and 10"}};
+  for (const auto& [values, message] : bad) {
+    TrainConfig train;
+    train.method = Method::kBaseline;
+    train.action_min_std = values;
+    try {
+      Trainer trainer(data, NetworkConfig{}, train);
+      ADD_FAILURE() << "accepted " << message;
+    } catch (const UserError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
     }
   }
 }
