@@ -143,7 +143,7 @@ std::vector<Case> Cases() {
     cases.push_back(std::move(c));
   }
   // A floor on one action only (TrainConfig::action_min_std), over chunks of 2 actions, so the
-  // floors repeat per chunk step: the second action's above its starting spread, the first free.
+  // floors repeat per chunk step: the first action's above its starting spread, the second free.
   for (bool image : {true, false}) {
     Case c;
     c.name = std::string(image ? "image" : "vector") + " action-floor";
@@ -153,7 +153,7 @@ std::vector<Case> Cases() {
     c.train.restart_rule = false;
     c.train.method = image ? Method::kRecon : Method::kBaseline;
     c.train.seed = 12;
-    c.train.action_min_std = {0.0, 2.0};
+    c.train.action_min_std = {2.0, 0.0};
     c.train.steps = 1000;
     cases.push_back(std::move(c));
   }
