@@ -201,10 +201,7 @@ TEST(CrashSafetyTest, AKilledExperimentKeepsEveryRunItFinished) {
     const fs::path out = root / ("killed_" + std::to_string(rows));
     const fs::path partial = out / "runs_so_far.csv";
     const pid_t pid = SpawnRecon(args(out.filename().string()));
-    siginfo_t ended{};  // polled without reaping, so the pid stays the child's until killed
-    while (Lines(partial).size() < rows + 1 &&
-           !(waitid(P_PID, static_cast<id_t>(pid), &ended, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-             ended.si_pid == pid)) {
+    while (Lines(partial).size() < rows + 1 && !testing::HasEnded(pid)) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
     kill(pid, SIGKILL);

@@ -31,6 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using testing::HasEnded;
 using testing::SpawnRecon;
 using testing::TemporaryFiles;
 
@@ -71,14 +72,6 @@ int FilesOfOneRun(std::vector<std::string> record_args, const fs::path& scratch)
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the reference run failed";
   EXPECT_GT(files, 0) << "the reference run wrote no episode";
   return files;
-}
-
-/// Whether `pid` has ended, without reaping it (so that its pid cannot be reused before the
-/// test's kill and waitpid).
-bool HasEnded(pid_t pid) {
-  siginfo_t info{};
-  return waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-         info.si_pid == pid;
 }
 
 /// Kills `recon record` `kills` times, each when the run has written a drawn number of files in

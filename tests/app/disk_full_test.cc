@@ -33,14 +33,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::CommandResult;
+using testing::FullDiskRun;
 using ::testing::HasSubstr;
 using ::testing::Not;
 using testing::ReadBytes;
-using testing::FullDiskRun;
 using testing::SmallDisk;
 using testing::Snapshot;
-
-constexpr uint64_t kPage_bytes = 4096;
 
 /// Each test gets a folder of its own and two sessions: a Dynamic 2D one (3 demonstrations,
 /// play data, both methods trained and evaluated) and a tabletop one with camera images.
@@ -76,10 +74,7 @@ class DiskFullTest : public ::testing::Test {
       if (old == before.end() || old->second != bytes) written += bytes.size();
     }
     ASSERT_GT(written, 0u) << args << " wrote nothing";
-    std::set<uint64_t> free_sizes = {0, kPage_bytes};
-    for (int eighth = 1; eighth < 8; ++eighth) {
-      free_sizes.insert(written * eighth / 8 / kPage_bytes * kPage_bytes);
-    }
+    const std::set<uint64_t> free_sizes = testing::FreeSizesToWalk(written);
     int failures = 0;
     for (const uint64_t free_bytes : free_sizes) {
       SCOPED_TRACE(args + " with " + std::to_string(free_bytes) + " bytes free (" +

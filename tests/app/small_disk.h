@@ -8,12 +8,30 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "tests/app/run_recon.h"
 #include "tests/app/saved_files.h"
 
 namespace recon::testing {
+
+/// How much to leave free in a walk of a program that writes `written` bytes with room to
+/// spare: nothing, one page, 1/8 to 7/8 of it and, for each of `short_by`, that much short of
+/// the whole (where the last files are written), in whole pages.
+inline std::set<uint64_t> FreeSizesToWalk(uint64_t written,
+                                          const std::vector<uint64_t>& short_by = {}) {
+  constexpr uint64_t kPageBytes = 4096;
+  std::set<uint64_t> sizes = {0, kPageBytes};
+  for (int eighth = 1; eighth < 8; ++eighth) {
+    sizes.insert(written * eighth / 8 / kPageBytes * kPageBytes);
+  }
+  for (const uint64_t bytes : short_by) {
+    if (written > bytes) sizes.insert((written - bytes) / kPageBytes * kPageBytes);
+  }
+  return sizes;
+}
 
 /// What a run on the small file system left: its copy, the program's output and exit code.
 struct FullDiskRun {

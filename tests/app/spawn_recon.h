@@ -4,6 +4,7 @@
 // left behind. RECON_CLI is the binary's path (a compile definition of the test).
 
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -26,6 +27,14 @@ inline pid_t SpawnRecon(const std::vector<std::string>& args) {
     _exit(127);
   }
   return pid;
+}
+
+/// Whether the child `pid` has ended, without reaping it: its pid stays the child's until the
+/// test's own kill and waitpid, so a kill can never reach a process that reused the number.
+inline bool HasEnded(pid_t pid) {
+  siginfo_t info{};
+  return waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+         info.si_pid == pid;
 }
 
 /// Counts files that a killed writer left half-written (they carry ".tmp." in their names).

@@ -34,8 +34,6 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using testing::SmallDisk;
 
-constexpr uint64_t kPageBytes = 4096;
-
 TEST(StudioDiskFullTest, AFullDiskIsShownAndLeavesEverySavedFileWhole) {
   const fs::path root = fs::path("/tmp") / ("studio_disk_full_" + std::to_string(getpid()));
   fs::remove_all(root);
@@ -51,14 +49,8 @@ TEST(StudioDiskFullTest, AFullDiskIsShownAndLeavesEverySavedFileWhole) {
   // What a whole session writes: everything but the inputs.
   const uint64_t written =
       testing::DirectoryBytes(roomy.root) - testing::DirectoryBytes(root / "extra");
-  std::set<uint64_t> free_sizes = {0, kPageBytes};
-  for (int eighth = 1; eighth < 8; ++eighth) {
-    free_sizes.insert(written * eighth / 8 / kPageBytes * kPageBytes);
-  }
   // And just short of the whole, where the rollouts' replays and the report are written last.
-  for (const uint64_t short_by : {512ull << 10, 64ull << 10}) {
-    if (written > short_by) free_sizes.insert((written - short_by) / kPageBytes * kPageBytes);
-  }
+  const std::set<uint64_t> free_sizes = testing::FreeSizesToWalk(written, {512 << 10, 64 << 10});
   int shown = 0;
   for (const uint64_t free_bytes : free_sizes) {
     SCOPED_TRACE("the studio with " + std::to_string(free_bytes) + " bytes free (" +
