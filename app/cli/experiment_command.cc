@@ -65,6 +65,7 @@ struct ExperimentFlags {
   double beacon_noise = worlds::Tabletop::kDwm1001NoiseSigma_m;
   double demo_noise = 0.0;        ///< only when --demo-noise is given; else the world's default
   int random_shift = -1;          ///< -1: the world's recipe
+  int random_erase = -1;          ///< -1: the world's recipe
   double feature_noise = 0.0;     ///< only when --feature-noise was given
   int beacon_filter = -1;         ///< -1: the world's recipe
   double play_consistency = 0.0;  ///< only when --play-consistency was given
@@ -163,6 +164,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   config.network.image_scale = recipe.network.image_scale;
   config.train.random_shift_px =
       flags.random_shift >= 0 ? flags.random_shift : recipe.train.random_shift_px;
+  config.train.random_erase_px =
+      flags.random_erase >= 0 ? flags.random_erase : recipe.train.random_erase_px;
   config.train.feature_noise =
       given("--feature-noise") ? flags.feature_noise : recipe.train.feature_noise;
   config.train.beacon_filter_samples =
@@ -198,6 +201,13 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
     config.train.random_shift_px = 0;  // vector observations have no pixels to shift
+  }
+  if (!worlds::WorldNeedsRenderer(config.world)) {
+    if (flags.random_erase > 0) {
+      throw UserError("--random-erase: the " + config.world +
+                      " world's observations are vectors, not camera images");
+    }
+    config.train.random_erase_px = 0;
   }
   config.network.action_chunk =
       flags.action_chunk >= 0 ? flags.action_chunk : recipe.network.action_chunk;
@@ -387,6 +397,12 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "random-shift augmentation of camera images, pixels (DrQ; 0 = off; default: "
                    "the world's recipe)")
       ->check(WholeBetween(0, 16));
+  command
+      ->add_option("--random-erase", flags->random_erase,
+                   "random erasing of camera images: a square of N x N pixels painted with the "
+                   "image's mean colour, at a random place of each training image (cutout; 0 = "
+                   "off; default: the world's recipe)")
+      ->check(WholeBetween(0, learn::kMaxRandomErasePx));
   command
       ->add_option("--feature-noise", flags->feature_noise,
                    "noise on the features the policy reads while training, in standard "

@@ -30,6 +30,28 @@ Shift DrawShift(Rng& rng, int pad) {
   return s;
 }
 
+Erase DrawErase(Rng& rng, int height, int width, int side) {
+  Erase e;
+  e.side = std::clamp(side, 0, std::min(height, width));
+  e.row = static_cast<int>(rng.UniformInt(static_cast<uint64_t>(height - e.side + 1)));
+  e.col = static_cast<int>(rng.UniformInt(static_cast<uint64_t>(width - e.side + 1)));
+  return e;
+}
+
+void EraseSquare(float* image, int channels, int height, int width, const Erase& erase) {
+  const int64_t plane_size = static_cast<int64_t>(height) * width;
+  for (int c = 0; c < channels; ++c) {
+    float* plane = image + c * plane_size;
+    double sum = 0;
+    for (int64_t i = 0; i < plane_size; ++i) sum += plane[i];
+    const auto mean = static_cast<float>(sum / static_cast<double>(plane_size));
+    for (int r = erase.row; r < erase.row + erase.side; ++r) {
+      std::fill(plane + static_cast<int64_t>(r) * width + erase.col,
+                plane + static_cast<int64_t>(r) * width + erase.col + erase.side, mean);
+    }
+  }
+}
+
 void FeatureNoiseOffsets(const float* phi, int batch, int k, double sigma, const float* noise,
                          float* offsets) {
   for (int i = 0; i < k; ++i) {

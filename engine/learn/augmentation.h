@@ -6,6 +6,11 @@
 // that a pixel's exact place carries less than what is there. Training only: a policy acting sees
 // the image as it is.
 //
+// Random erasing (cutout; DeVries & Taylor 2017, RAD 2020): a square of the image is painted
+// over with the image's own mean colour. A bowl that moves between scenes is a local change of
+// the image; a few demonstrations never show the policy that such a change should not move it,
+// and erasing a random patch of every training image does.
+//
 // Also feature noise (TrainConfig::feature_noise): the other augmentation, on the features the
 // policy reads rather than on the image.
 
@@ -35,5 +40,17 @@ struct Shift {
   int dy = 0, dx = 0;
 };
 Shift DrawShift(Rng& rng, int pad);
+
+/// Where a square of `side` pixels is erased: its top-left corner, drawn uniformly so that the
+/// square lies inside a height x width image (row first, then column). A side larger than the
+/// image is clipped to it.
+struct Erase {
+  int row = 0, col = 0, side = 0;
+};
+Erase DrawErase(Rng& rng, int height, int width, int side);
+
+/// Paints the square `erase` of `image` (channels-first, in place) with each channel's mean over
+/// the whole image, taken before the square is painted.
+void EraseSquare(float* image, int channels, int height, int width, const Erase& erase);
 
 }  // namespace recon::learn

@@ -60,6 +60,7 @@ std::string ToJson(const TrainConfig& t) {
   j["restart_rule"] = t.restart_rule;
   j["standardize_targets"] = t.standardize_targets;
   j["random_shift_px"] = t.random_shift_px;
+  j["random_erase_px"] = t.random_erase_px;
   j["feature_noise"] = t.feature_noise;
   j["beacon_filter_samples"] = t.beacon_filter_samples;
   j["play_consistency"] = t.play_consistency;
@@ -134,6 +135,7 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   Read(j, "seed", t.seed, what);
   // Checkpoints from before augmentation existed trained without it.
   if (j.contains("random_shift_px")) Read(j, "random_shift_px", t.random_shift_px, what);
+  if (j.contains("random_erase_px")) Read(j, "random_erase_px", t.random_erase_px, what);
   if (j.contains("feature_noise")) Read(j, "feature_noise", t.feature_noise, what);
   // ... and on raw beacon readings, without play consistency.
   if (j.contains("beacon_filter_samples")) {

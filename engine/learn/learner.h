@@ -133,6 +133,8 @@ struct NetworkConfig {
   bool operator==(const NetworkConfig& other) const = default;
 };
 
+/// The largest square TrainConfig::random_erase_px accepts (in pixels).
+constexpr int kMaxRandomErasePx = 64;
 /// The largest TrainConfig::feature_noise accepted (in standard deviations of each feature).
 constexpr double kMaxFeatureNoise = 10.0;
 /// The largest TrainConfig::beacon_filter_samples accepted: longer than any episode.
@@ -183,6 +185,12 @@ struct TrainConfig {
   /// this many pixels per axis, border replicated, drawn from its own seeded stream. 0 = off (and
   /// no random numbers drawn, so results without it are unchanged); at most kMaxRandomShiftPx.
   int random_shift_px = 0;
+  /// Random erasing of camera images (cutout, augmentation.h): after the shift, a square of this
+  /// side (pixels) at a uniformly drawn place of each training image (demonstration and play) is
+  /// painted with the image's mean colour, drawn from the augmentation stream. It shows the
+  /// networks that a local change of the scene (a bowl elsewhere) need not change the action.
+  /// 0 = off (nothing drawn, results unchanged); at most kMaxRandomErasePx.
+  int random_erase_px = 0;
   /// Feature noise: before the policy reads the features of a demonstration batch, each one is
   /// perturbed by feature_noise times its standard deviation over the batch (Gaussian, from the
   /// augmentation stream; the spread is held constant in the gradient). The beacon net reads them

@@ -49,6 +49,11 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     std::to_string(kMaxRandomShiftPx) + " pixels (got " +
                     std::to_string(train.random_shift_px) + ")");
   }
+  if (train.random_erase_px < 0 || train.random_erase_px > kMaxRandomErasePx) {
+    throw UserError("train config: random_erase_px must be between 0 and " +
+                    std::to_string(kMaxRandomErasePx) + " pixels (got " +
+                    std::to_string(train.random_erase_px) + ")");
+  }
   if (!std::isfinite(train.gate_margin) || train.gate_margin < 0 ||
       train.gate_margin > kMaxGateMargin) {
     throw UserError("train config: gate_margin must be between 0 and " +
@@ -97,6 +102,12 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
     throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +
                     data.spec.ToString() + "); set it to 0");
+  }
+  if (train.random_erase_px > 0 && !data.spec.YIsImage()) {
+    throw UserError(
+        "train config: random_erase_px erases squares of camera images, but y is a "
+        "vector (" +
+        data.spec.ToString() + "); set it to 0");
   }
   if (train.method == Method::kRecon) {
     const int d = data.spec.b_dim, k = network.feature_dim;

@@ -83,7 +83,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
       grad_play_phi_.assign(static_cast<size_t>(batch) * arch_.feature_dim(), 0.0f);
     }
   }
-  if (train.random_shift_px > 0) {
+  if (train.random_shift_px > 0 || train.random_erase_px > 0) {
     shifted_demo_y_.assign(static_cast<size_t>(batch) * data_.y_size, 0.0f);
     if (UsesPlay()) shifted_play_y_.assign(shifted_demo_y_.size(), 0.0f);
   }
@@ -146,12 +146,22 @@ void TrainerImpl::GatherBatch() {
       play_.y[i] = data_.PlayY(row);
     }
   }
-  if (train_.random_shift_px > 0) {
+  if (train_.random_shift_px > 0 || train_.random_erase_px > 0) {
     const int channels = static_cast<int>(s.y_shape[0]), height = static_cast<int>(s.y_shape[1]),
               width = static_cast<int>(s.y_shape[2]);
+    // The image is copied into the batch's own buffer (shifted, or as it is), and erased there:
+    // the dataset's images are never written.
     auto shift = [&](const float*& image, float* out) {
-      const Shift d = DrawShift(augment_rng_, train_.random_shift_px);
-      ShiftImage(image, channels, height, width, d.dy, d.dx, out);
+      if (train_.random_shift_px > 0) {
+        const Shift d = DrawShift(augment_rng_, train_.random_shift_px);
+        ShiftImage(image, channels, height, width, d.dy, d.dx, out);
+      } else {
+        std::copy(image, image + data_.y_size, out);
+      }
+      if (train_.random_erase_px > 0) {
+        const Erase e = DrawErase(augment_rng_, height, width, train_.random_erase_px);
+        EraseSquare(out, channels, height, width, e);
+      }
       image = out;
     };
     for (int i = 0; i < demo_.batch; ++i) {

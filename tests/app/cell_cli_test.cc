@@ -181,6 +181,9 @@ TEST(CellCliTest, TabletopProtocolOptionsOutOfRangeAreRefusedByName) {
       {"--demo-noise 3", "--demo-noise: must be a number from 0 to 1"},
       {"--observation depth", "--observation must be 'image'"},
       {"--random-shift 40", "--random-shift"},
+      {"--random-erase 65", "--random-erase: must be a whole number from 0 to 64"},
+      {"--observation state --random-erase 8",
+       "--random-erase: the tabletop-state world's observations are vectors"},
       {"--action-chunk 0", "--action-chunk"},
       {"--beacon-weight -1", "--beacon-weight: must be a number from 0 to 1000"},
       {"--play-weight nan", "--play-weight: must be a number from 0 to 1000"},
@@ -221,6 +224,19 @@ TEST(CellCliTest, AGripperFloorOutsideTheTabletopIsRefused) {
     EXPECT_EQ(r.exit_code, 2) << world << ": " << r.output;
     EXPECT_THAT(r.output, HasSubstr("--gripper-min-std: the " + std::string(world) +
                                     " world has no gripper command"));
+    EXPECT_FALSE(fs::exists(out / world / "summary.json")) << world;
+  }
+}
+
+TEST(CellCliTest, RandomErasingOfVectorObservationsIsRefused) {
+  const fs::path out = FreshDir("random_erase");
+  for (const char* world : {"dynamic2d", "static2d", "bintransfer"}) {
+    const CommandResult r =
+        RunRecon(std::string("experiment ") + world +
+                 " --runs 1 --tests 1 --random-erase 8 --out " + (out / world).string());
+    EXPECT_EQ(r.exit_code, 2) << world << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("--random-erase: the " + std::string(world) +
+                                    " world's observations are vectors, not camera images"));
     EXPECT_FALSE(fs::exists(out / world / "summary.json")) << world;
   }
 }

@@ -80,9 +80,10 @@ std::vector<OptionCase> NumericOptions() {
   for (const char* world : {"dynamic2d", "static2d", "bintransfer", "tabletop"}) {
     const std::string exp =
         std::string("experiment ") + world + " --out " + (out / "exp").string() + " ";
-    for (const char* option : {"--demos", "--runs", "--tests", "--jobs", "--steps",
-                               "--baseline-steps", "--batch", "--play", "--feature-dim",
-                               "--random-shift", "--action-chunk", "--beacon-filter", "--seed"}) {
+    for (const char* option :
+         {"--demos", "--runs", "--tests", "--jobs", "--steps", "--baseline-steps", "--batch",
+          "--play", "--feature-dim", "--random-shift", "--random-erase", "--action-chunk",
+          "--beacon-filter", "--seed"}) {
       cases.push_back({exp, option, true});
     }
     for (const char* option :
