@@ -15,6 +15,7 @@
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/machine.h"
 #include "engine/core/progress.h"
 #include "engine/core/strings.h"
 #include "engine/experiments/condition.h"
@@ -270,9 +271,10 @@ void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOpti
   const int total = static_cast<int>(config.conditions.size() * config.demos.size()) * config.runs;
   std::printf(
       "recon experiment %s: %zu conditions x %zu demo counts x %d runs = %d models, "
-      "%d test scenarios, seed %llu, %d parallel jobs x %d thread(s)\n",
+      "%d test scenarios, seed %llu, %d parallel jobs x %d thread(s), kernels %s on %s\n",
       config.world.c_str(), config.conditions.size(), config.demos.size(), config.runs, total,
-      config.tests, static_cast<unsigned long long>(config.seed), config.jobs, global.threads);
+      config.tests, static_cast<unsigned long long>(config.seed), config.jobs, global.threads,
+      learn::KernelsInUse().c_str(), CpuModelName().c_str());
   std::fflush(stdout);
   std::printf("each finished run is kept in %s until the results are written\n",
               (fs::path(out) / experiments::kRunsSoFarFile).c_str());

@@ -415,9 +415,8 @@ class StudioController::Cell {
         std::min(std::max(1, world_->PlaySamplesPerScenario()), play_target_ - play_done_);
     play_ =
         std::make_unique<teach::PlayRecorder>(*world_, real_ ? "person-play" : "simulated-play");
-    play_->Start(
-        store::Session::ScenarioSeed(session_->manifest().seed, session_->NextPlayNumber(), true),
-        chunk);
+    teach::StartSessionPlay(*play_, *world_, session_->manifest().seed, session_->NextPlayNumber(),
+                            chunk);
   }
 
   /// Reads the gamepad and, when it drives the recording, turns its sticks into the same

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "engine/core/files.h"
+#include "engine/core/machine.h"
 #include "engine/core/stats.h"
 #include "engine/report/chart.h"
 
@@ -179,6 +180,9 @@ json SummaryJson(const ExperimentConfig& config, const ExperimentResult& result,
           {"seeds", seeds},
           {"authors_compat", config.authors_compat},
           {"jobs", config.jobs},
+          // Training is chaotic under rounding: the same seeds give other models on another CPU
+          // or kernel table (docs/results.md), so the numbers say where they were measured.
+          {"machine", {{"cpu", CpuModelName()}, {"kernels", learn::KernelsInUse()}}},
           {"train", train},
           {"network", network},
           {"protocol", protocol},

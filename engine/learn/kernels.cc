@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "engine/core/error.h"
+#include "engine/learn/learner.h"
 
 namespace recon::learn::kernels {
 
@@ -72,3 +73,9 @@ bool UseKernels(const std::string& name) {
 }
 
 }  // namespace recon::learn::kernels
+
+namespace recon::learn {
+
+std::string KernelsInUse() { return kernels::Kernels().name; }
+
+}  // namespace recon::learn

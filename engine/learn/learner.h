@@ -375,4 +375,9 @@ class Trainer {
 /// Loads the policy stored in a checkpoint. UserError if missing, corrupt, or not a checkpoint.
 Policy LoadPolicy(const std::string& checkpoint_path);
 
+/// The name of the fused kernel table training runs on ("generic", "avx2" or "avx512"; the
+/// best this CPU has unless RECON_KERNELS chose one). Training is chaotic under rounding, so two
+/// kernel tables (or two CPUs) give different models from the same seeds: experiments record it.
+std::string KernelsInUse();
+
 }  // namespace recon::learn

@@ -7,10 +7,17 @@ namespace recon::teach {
 PlayRecorder::PlayRecorder(worlds::World& world, std::string source)
     : world_(world), source_(std::move(source)) {}
 
-void PlayRecorder::Start(uint64_t seed, int count) {
+void PlayRecorder::Start(uint64_t seed, int count) { StartTake(seed, seed, -1, count); }
+
+void PlayRecorder::StartTake(uint64_t seed, uint64_t configuration_seed, int configuration,
+                             int count) {
   if (count < 1)
     throw UserError("a play chunk needs at least one sample, not " + std::to_string(count));
-  world_.Reset(seed);
+  if (configuration < 0) {
+    world_.Reset(seed);
+  } else {
+    world_.ResetTake(seed, configuration_seed, configuration);
+  }
   record_ = {};
   record_.meta.kind = "play";
   record_.meta.seed = seed;

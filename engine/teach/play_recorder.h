@@ -19,6 +19,10 @@ class PlayRecorder {
 
   /// Resets the world to scenario `seed` and starts a chunk of `count` samples (count >= 1).
   void Start(uint64_t seed, int count);
+  /// The same in a configuration's scene (World::ResetTake): the objects where `configuration`
+  /// (drawn from `configuration_seed`) puts them, `seed` driving the rest (the play moves and
+  /// the beacon noise).
+  void StartTake(uint64_t seed, uint64_t configuration_seed, int configuration, int count);
   /// Draws one sample. Returns false once the chunk is complete.
   bool Tick();
   bool recording() const { return recording_; }

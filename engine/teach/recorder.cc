@@ -27,6 +27,28 @@ void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64
                      configuration);
 }
 
+void StartSessionPlay(PlayRecorder& recorder, const worlds::World& world, uint64_t session_seed,
+                      int number, int count) {
+  const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, true);
+  const int n = world.DemosPerConfiguration();
+  if (n <= 1) {
+    recorder.Start(seed, count);
+    return;
+  }
+  const int configuration = number / n;
+  recorder.StartTake(seed, store::Session::ScenarioSeed(session_seed, configuration * n, false),
+                     configuration, count);
+}
+
+store::PlayRecord RecordSessionPlayChunk(worlds::World& world, uint64_t session_seed, int number,
+                                         int count) {
+  PlayRecorder recorder(world, "simulated-play");
+  StartSessionPlay(recorder, world, session_seed, number, count);
+  while (recorder.Tick()) {
+  }
+  return recorder.Take();
+}
+
 void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
                       const store::SessionManifest& manifest, int number, uint64_t seed) {
   recorder.SetActionNoise(manifest.demo_noise_sigma);
@@ -126,8 +148,8 @@ void RecordEpisodes(store::Session& session, worlds::World& world, const RecordP
   while (progress.play_samples_done < plan.play_samples && !cancelled()) {
     const int chunk_size = std::min(std::max(1, world.PlaySamplesPerScenario()),
                                     plan.play_samples - progress.play_samples_done);
-    const uint64_t seed = store::Session::ScenarioSeed(plan.seed, session.NextPlayNumber(), true);
-    const store::EpisodeEntry& entry = session.CommitPlay(RecordPlayChunk(world, seed, chunk_size));
+    const store::EpisodeEntry& entry = session.CommitPlay(
+        RecordSessionPlayChunk(world, plan.seed, session.NextPlayNumber(), chunk_size));
     progress.play_samples_done += static_cast<int>(entry.meta.num_samples);
     progress.last_committed =
         entry.name + " (" + std::to_string(entry.meta.num_samples) + " play samples)";

@@ -8,6 +8,7 @@
 
 #include "engine/store/episode_file.h"
 #include "engine/store/session.h"
+#include "engine/teach/play_recorder.h"
 #include "engine/worlds/world.h"
 
 namespace recon::teach {
@@ -81,6 +82,19 @@ void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
 /// Draws one scenario's worth of play data (World::PlaySamplesPerScenario samples, or `count`
 /// if positive) from scenario `seed`.
 store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count = 0);
+
+/// Starts play chunk number `number` of a session whose scenario seeds derive from
+/// `session_seed` (its own seed: Session::ScenarioSeed(session_seed, number, true)). In worlds
+/// with several demonstrations per configuration the chunk is recorded in the scene of
+/// demonstration number `number` (configuration number / n), as `recon experiment` records play
+/// in each demonstration's scene: the paper's teacher moved the bowl around the plate's marked
+/// places, so play covers the plate's places as the demonstrations do (before, chunks drew
+/// their own scenes, and one session's 8 chunks had the plate on the same side 7 times).
+void StartSessionPlay(PlayRecorder& recorder, const worlds::World& world, uint64_t session_seed,
+                      int number, int count);
+/// A whole session play chunk (StartSessionPlay), as `recon record --play` records it.
+store::PlayRecord RecordSessionPlayChunk(worlds::World& world, uint64_t session_seed, int number,
+                                         int count);
 
 /// What `recon record` (and the GUI's "record N demonstrations") does.
 struct RecordPlan {

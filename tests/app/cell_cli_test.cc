@@ -141,6 +141,12 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   EXPECT_EQ(summary["network"]["action_chunk"], 10);
   EXPECT_EQ(summary["train"]["random_shift_px"], 4);
   EXPECT_DOUBLE_EQ(summary["train"]["feature_noise"].get<double>(), 0.0);
+  EXPECT_EQ(summary["train"]["random_erase_px"], 0);
+  // Where it was measured: the same seeds train other models on another CPU or kernel table.
+  const std::string kernels = summary["machine"]["kernels"].get<std::string>();
+  EXPECT_TRUE(kernels == "generic" || kernels == "avx2" || kernels == "avx512") << kernels;
+  EXPECT_THAT(r.output, HasSubstr("kernels " + kernels + " on "));
+  EXPECT_FALSE(summary["machine"]["cpu"].get<std::string>().empty());
   const auto& time = summary["teaching_time"];
   // The scripted teacher takes about 13.5 s (the paper's people took 16.6 s).
   const double per_demo = time["seconds_per_demonstration"].get<double>();

@@ -166,9 +166,7 @@ struct Reference {
     return demos[number] = recorder.Take().episode;
   }
   std::vector<PlaySample> Play(int number, int64_t size) const {
-    return teach::RecordPlayChunk(world, store::Session::ScenarioSeed(seed, number, true),
-                                  static_cast<int>(size))
-        .samples;
+    return teach::RecordSessionPlayChunk(world, seed, number, static_cast<int>(size)).samples;
   }
 };
 
