@@ -200,10 +200,9 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     }
     config.train.gate_target = learn::ParseGateTarget(flags.gate_target);
   }
-  if (!worlds::WorldNeedsRenderer(config.world) && flags.random_shift < 0) {
-    config.train.random_shift_px = 0;  // vector observations have no pixels to shift
-  }
   if (!worlds::WorldNeedsRenderer(config.world)) {
+    // Vector observations have no pixels to shift or erase.
+    if (flags.random_shift < 0) config.train.random_shift_px = 0;
     if (flags.random_erase > 0) {
       throw UserError("--random-erase: the " + config.world +
                       " world's observations are vectors, not camera images");

@@ -151,7 +151,7 @@ void TrainerImpl::GatherBatch() {
               width = static_cast<int>(s.y_shape[2]);
     // The image is copied into the batch's own buffer (shifted, or as it is), and erased there:
     // the dataset's images are never written.
-    auto shift = [&](const float*& image, float* out) {
+    auto augment = [&](const float*& image, float* out) {
       if (train_.random_shift_px > 0) {
         const Shift d = DrawShift(augment_rng_, train_.random_shift_px);
         ShiftImage(image, channels, height, width, d.dy, d.dx, out);
@@ -165,11 +165,11 @@ void TrainerImpl::GatherBatch() {
       image = out;
     };
     for (int i = 0; i < demo_.batch; ++i) {
-      shift(demo_.y[i], shifted_demo_y_.data() + i * data_.y_size);
+      augment(demo_.y[i], shifted_demo_y_.data() + i * data_.y_size);
     }
     if (UsesPlay()) {
       for (int i = 0; i < play_.batch; ++i) {
-        shift(play_.y[i], shifted_play_y_.data() + i * data_.y_size);
+        augment(play_.y[i], shifted_play_y_.data() + i * data_.y_size);
       }
     }
   }

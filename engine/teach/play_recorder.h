@@ -9,9 +9,9 @@
 namespace recon::teach {
 
 /// Records play data one sample at a time: the teacher moves the objects about while the beacons
-/// report (World::SamplePlay), and the studio shows each sample as it is taken. RecordPlayChunk
-/// (`recon record --play`) ticks the same recorder in a loop, so both record the same samples for
-/// the same seed.
+/// report (World::SamplePlay), and the studio shows each sample as it is taken.
+/// RecordSessionPlayChunk (`recon record --play`) ticks the same recorder in a loop, so both
+/// record the same samples for the same seed.
 class PlayRecorder {
  public:
   /// `source` names the recording in the chunk's metadata, e.g. "simulated-play".

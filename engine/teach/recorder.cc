@@ -10,34 +10,47 @@
 namespace recon::teach {
 
 namespace {
+
 // The stream of a take's injected action noise (Rng::Derive of its scenario seed).
 constexpr uint64_t kNoiseStream = 0xDA27;
+
+// The scene of a session's take number `number`: in worlds with n > 1 demonstrations per
+// configuration, configuration number / n, drawn from the scenario seed of its first take;
+// elsewhere none (configuration -1: the take's own scenario).
+struct SessionScene {
+  int configuration = -1;
+  uint64_t configuration_seed = 0;
+};
+
+SessionScene SessionSceneOf(const worlds::World& world, uint64_t session_seed, int number) {
+  const int n = world.DemosPerConfiguration();
+  if (n <= 1) return {};
+  const int configuration = number / n;
+  return {configuration, store::Session::ScenarioSeed(session_seed, configuration * n, false)};
+}
+
 }  // namespace
 
 void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64_t session_seed,
                       int number) {
   const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, false);
-  const int n = world.DemosPerConfiguration();
-  if (n <= 1) {
+  const SessionScene scene = SessionSceneOf(world, session_seed, number);
+  if (scene.configuration < 0) {
     recorder.Start(seed);
-    return;
+  } else {
+    recorder.StartTake(seed, scene.configuration_seed, scene.configuration);
   }
-  const int configuration = number / n;
-  recorder.StartTake(seed, store::Session::ScenarioSeed(session_seed, configuration * n, false),
-                     configuration);
 }
 
 void StartSessionPlay(PlayRecorder& recorder, const worlds::World& world, uint64_t session_seed,
                       int number, int count) {
   const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, true);
-  const int n = world.DemosPerConfiguration();
-  if (n <= 1) {
+  const SessionScene scene = SessionSceneOf(world, session_seed, number);
+  if (scene.configuration < 0) {
     recorder.Start(seed, count);
-    return;
+  } else {
+    recorder.StartTake(seed, scene.configuration_seed, scene.configuration, count);
   }
-  const int configuration = number / n;
-  recorder.StartTake(seed, store::Session::ScenarioSeed(session_seed, configuration * n, false),
-                     configuration, count);
 }
 
 store::PlayRecord RecordSessionPlayChunk(worlds::World& world, uint64_t session_seed, int number,
@@ -116,14 +129,6 @@ store::DemoRecord DemoRecorder::Take() {
   record_.meta.teaching_seconds = samples() * world_.StepSeconds();
   record_.meta.succeeded = world_.HasSuccess() && world_.TaskSucceeded();
   return std::move(record_);
-}
-
-store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count) {
-  PlayRecorder recorder(world, "simulated-play");
-  recorder.Start(seed, count > 0 ? count : std::max(1, world.PlaySamplesPerScenario()));
-  while (recorder.Tick()) {
-  }
-  return recorder.Take();
 }
 
 namespace {

@@ -79,10 +79,6 @@ void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64
 void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
                       const store::SessionManifest& manifest, int number, uint64_t seed);
 
-/// Draws one scenario's worth of play data (World::PlaySamplesPerScenario samples, or `count`
-/// if positive) from scenario `seed`.
-store::PlayRecord RecordPlayChunk(worlds::World& world, uint64_t seed, int count = 0);
-
 /// Starts play chunk number `number` of a session whose scenario seeds derive from
 /// `session_seed` (its own seed: Session::ScenarioSeed(session_seed, number, true)). In worlds
 /// with several demonstrations per configuration the chunk is recorded in the scene of
