@@ -3,12 +3,14 @@
 #include <cstdio>
 #include <exception>
 
+#include "app/cli/crash_report.h"
 #include "engine/core/error.h"
 
 namespace recon::cli {
 
 int RunMain(CLI::App& app, int argc, char** argv, const char* program,
             const std::function<void()>& run) {
+  InstallCrashReport(program);
   try {
     app.parse(argc, argv);
     if (run) run();

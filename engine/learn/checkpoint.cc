@@ -1,11 +1,6 @@
 // Checkpoints: one PyTorch archive (zip) per file holding the weights and Adam moments as
-// tensors, and the configurations, data shape and trainer state as JSON strings. The only other
-// translation units of the learner that include Torch are this, threads.cc and torch_step.cc.
-
-#include <torch/serialize/input-archive.h>
-#include <torch/serialize/output-archive.h>
-
-#include <ATen/ATen.h>
+// tensors, and the configurations, data shape and trainer state as JSON strings. The archive
+// itself is read and written by the Torch module (torch_module.h), loaded here on first use.
 
 #include <bit>
 #include <cmath>
@@ -20,6 +15,7 @@
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "engine/learn/policy_impl.h"
+#include "engine/learn/torch_module.h"
 #include "engine/learn/trainer_impl.h"
 
 namespace recon::learn {
@@ -102,36 +98,24 @@ void StateFromJson(const std::string& text, TrainerState& s, uint64_t& fingerpri
   }
 }
 
-at::Tensor ToTensor(const std::vector<float>& values) {
-  return at::from_blob(const_cast<float*>(values.data()), {static_cast<int64_t>(values.size())},
-                       at::kFloat)
-      .clone();
-}
-
-std::vector<float> FromTensor(const at::Tensor& tensor, const char* name) {
-  if (tensor.scalar_type() != at::kFloat || tensor.dim() != 1) {
-    throw UserError(std::string("tensor '") + name + "' is not a 1-D float tensor");
-  }
-  const at::Tensor t = tensor.contiguous();
-  const float* data = t.data_ptr<float>();
-  // A model that diverged, or a file altered on disk, must not be rolled out as if it were fine.
-  for (int64_t i = 0; i < t.numel(); ++i) {
-    if (!std::isfinite(data[i])) {
-      throw UserError(std::string("tensor '") + name + "' value " + std::to_string(i) + " of " +
-                      std::to_string(t.numel()) + " is " +
-                      (std::isnan(data[i]) ? "NaN" : "infinite") +
+// A model that diverged, or a file altered on disk, must not be rolled out as if it were fine.
+std::vector<float> CheckedFinite(std::vector<float> values, const std::string& name) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw UserError("tensor '" + name + "' value " + std::to_string(i) + " of " +
+                      std::to_string(values.size()) + " is " +
+                      (std::isnan(values[i]) ? "NaN" : "infinite") +
                       ": the model diverged or the file was altered; train it again");
     }
   }
-  return std::vector<float>(data, data + t.numel());
+  return values;
 }
 
-std::string ReadString(torch::serialize::InputArchive& archive, const char* key) {
-  c10::IValue value;
-  if (!archive.try_read(key, value) || !value.isString()) {
+std::string ReadString(ArchiveReader& archive, const char* key) {
+  std::string text;
+  if (!archive.TryReadString(key, text))
     throw UserError(std::string("entry '") + key + "' is missing");
-  }
-  return value.toStringRef();
+  return text;
 }
 
 std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
@@ -148,11 +132,11 @@ std::string Digest(const std::string& text) { return Digest(text.data(), text.si
 // before them have none, and read as before.
 class Digests {
  public:
-  explicit Digests(torch::serialize::InputArchive& archive) {
-    c10::IValue value;
-    if (archive.try_read("digests", value) && value.isString()) {
+  explicit Digests(ArchiveReader& archive) {
+    std::string text;
+    if (archive.TryReadString("digests", text)) {
       try {
-        stored_ = json::parse(value.toStringRef());
+        stored_ = json::parse(text);
       } catch (const json::exception&) {
         throw UserError("entry 'digests' is damaged");
       }
@@ -169,17 +153,14 @@ class Digests {
     }
   }
   /// ReadString(archive, entry), checked.
-  std::string CheckedString(torch::serialize::InputArchive& archive, const char* entry) const {
+  std::string CheckedString(ArchiveReader& archive, const char* entry) const {
     std::string text = ReadString(archive, entry);
     Check(entry, text);
     return text;
   }
   /// The 1-D float tensor `entry`, checked (FromTensor's checks first).
-  std::vector<float> CheckedTensor(torch::serialize::InputArchive& archive,
-                                   const char* entry) const {
-    at::Tensor tensor;
-    archive.read(entry, tensor);
-    std::vector<float> values = FromTensor(tensor, entry);
+  std::vector<float> CheckedTensor(ArchiveReader& archive, const char* entry) const {
+    std::vector<float> values = CheckedFinite(archive.ReadFloatTensor(entry), entry);
     Check(entry, values);
     return values;
   }
@@ -193,10 +174,11 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
   if (!std::filesystem::is_regular_file(path)) {
     throw UserError("checkpoint '" + path + "' does not exist");
   }
+  const TorchModule& torch = Torch();
   CheckpointContents c;
   try {
-    torch::serialize::InputArchive archive;
-    archive.load_from(path);
+    const std::unique_ptr<ArchiveReader> reader = torch.open_archive(path);
+    ArchiveReader& archive = *reader;
     if (ReadString(archive, "format") != kFormat) {
       throw UserError("not a RECON checkpoint (format is not " + std::string(kFormat) + ")");
     }
@@ -228,19 +210,20 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
   // rename): Torch's own file writer aborts the process when the disk fills (its destructor
   // throws while an exception is in flight), and a crash must leave the old checkpoint or the
   // new one, never a half-written file or a temporary.
-  std::ostringstream bytes;
+  const TorchModule& torch = Torch();
+  std::string bytes;
   try {
-    torch::serialize::OutputArchive archive;
+    const std::unique_ptr<ArchiveWriter> archive = torch.new_archive();
     json digests;
     auto write_string = [&](const char* entry, const std::string& text) {
-      archive.write(entry, c10::IValue(text));
+      archive->WriteString(entry, text);
       digests[entry] = Digest(text);
     };
     auto write_tensor = [&](const char* entry, const std::vector<float>& values) {
-      archive.write(entry, ToTensor(values));
+      archive->WriteFloatTensor(entry, values);
       digests[entry] = Digest(values);
     };
-    archive.write("format", c10::IValue(std::string(kFormat)));
+    archive->WriteString("format", kFormat);
     write_string("network", ToJson(impl_->network()));
     write_string("train", ToJson(impl_->train()));
     write_string("spec", ToJson(impl_->arch().spec));
@@ -249,13 +232,13 @@ void Trainer::SaveCheckpoint(const std::string& path) const {
     write_tensor("target_scaling", impl_->scaling().Flatten());
     write_tensor("exp_avg", s.exp_avg);
     write_tensor("exp_avg_sq", s.exp_avg_sq);
-    archive.write("digests", c10::IValue(digests.dump()));
-    archive.save_to(bytes);
+    archive->WriteString("digests", digests.dump());
+    bytes = archive->Bytes();
   } catch (const std::exception& e) {
     throw UserError("cannot write checkpoint '" + path + "': " + FirstLine(e.what()));
   }
   try {
-    WriteFileAtomically(path, bytes.str());
+    WriteFileAtomically(path, bytes);
   } catch (const UserError& e) {
     // "cannot write <path>: <reason>" becomes "cannot write checkpoint '<path>': <reason>".
     const std::string plain = "cannot write " + path + ": ", what = e.what();

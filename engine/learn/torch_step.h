@@ -4,9 +4,10 @@
 // written with LibTorch operators and autograd, over the trainer's own flat parameters. Only the
 // gradient comes from here: the batch, the noise, the divergence checks and the Adam update stay
 // the trainer's, so both backends train the same model from the same state. Internal; does not
-// include Torch (torch_step.cc is the only file that pays its compile cost).
+// include Torch: the step itself lives in the Torch module (torch_module.h), loaded on first use.
 
 #include <memory>
+#include <vector>
 
 #include "engine/learn/architecture.h"
 #include "engine/learn/learner.h"
@@ -30,23 +31,29 @@ struct TorchBatch {
   const float* gate_target = nullptr;
 };
 
+/// What the module's step needs beyond the architecture and the recipe, computed here so that
+/// the module calls nothing of the learner's (it links LibTorch only).
+struct TorchStepSetup {
+  Architecture arch;
+  TrainConfig train;
+  int64_t y_size = 0;                         ///< arch.spec.YSize()
+  std::vector<float> policy_min_logvar;       ///< TrainConfig::PolicyMinLogVar per dimension
+  std::vector<float> beacon_min_logvar;       ///< TrainConfig::NllMinLogVar per dimension
+  std::vector<float> keypoint_x, keypoint_y;  ///< KeypointCoordinates(w), (h); spatial softmax
+};
+
 class TorchStep {
  public:
-  TorchStep(const Architecture& arch, const TrainConfig& train);
-  ~TorchStep();
-  TorchStep(const TorchStep&) = delete;
-  TorchStep& operator=(const TorchStep&) = delete;
-
+  virtual ~TorchStep() = default;
   /// Runs the forward pass on `params` (num_params floats, not copied: they must stay in place
   /// until Backward) and writes the unweighted per-term losses into `metrics`.
-  void Forward(const float* params, const TorchBatch& batch, StepMetrics& metrics);
+  virtual void Forward(const float* params, const TorchBatch& batch, StepMetrics& metrics) = 0;
   /// Backpropagates the weighted sum of the last Forward's losses and adds dLoss/dparams to
   /// `grads` (num_params floats, laid out like params).
-  void Backward(float* grads);
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  virtual void Backward(float* grads) = 0;
 };
+
+/// The Torch backend's step for `arch` trained with `train` (loads the Torch module).
+std::unique_ptr<TorchStep> MakeTorchStep(const Architecture& arch, const TrainConfig& train);
 
 }  // namespace recon::learn

@@ -98,7 +98,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
       batch_gate_targets_.assign(static_cast<size_t>(batch), 0.0f);
     }
   }
-  if (train.backend == Backend::kTorch) torch_ = std::make_unique<TorchStep>(arch_, train_);
+  if (train.backend == Backend::kTorch) torch_ = MakeTorchStep(arch_, train_);
   StartAttempt(0);
 }
 

@@ -16,6 +16,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 using recon::testing::CommandResult;
 using recon::testing::RunRecon;
@@ -71,6 +72,47 @@ TEST(CliTest, TorchBackendRunsAndUnknownBackendIsRejected) {
                                      " --backend tensorflow --out " + FreshDir("tf").string());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.output, HasSubstr("unknown backend 'tensorflow'"));
+}
+
+// LibTorch is loaded only by what needs it (torch_module.h): with the module unreachable, help
+// and a Torch-free experiment still run, and a run on the Torch backend stops with an error that
+// names the module's path and says what needs it.
+TEST(CliTest, TorchIsLoadedOnlyByWhatNeedsIt) {
+  const fs::path missing = FreshDir("no_module") / "librecon_torch.so";
+  const std::string env = "RECON_TORCH_MODULE=" + missing.string() + " ";
+  const CommandResult help = recon::testing::RunCommand(env + RECON_CLI + " --help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  const fs::path out = FreshDir("no_module_run");
+  const CommandResult plain =
+      recon::testing::RunCommand(env + RECON_CLI + " experiment dynamic2d " + kTiny +
+                                 " --conditions exact --out " + out.string());
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+  const CommandResult torch = recon::testing::RunCommand(
+      env + RECON_CLI + " experiment dynamic2d " + kTiny +
+      " --conditions exact --backend torch --out " + FreshDir("no_module_torch").string());
+  EXPECT_EQ(torch.exit_code, 2) << torch.output;
+  EXPECT_THAT(torch.output, HasSubstr("cannot load the Torch module " + missing.string()));
+  EXPECT_THAT(torch.output, HasSubstr("the Torch backend need it"));
+  EXPECT_THAT(torch.output, Not(HasSubstr("internal error")));
+}
+
+// A crash says which signal and where, then ends the process as the signal would have: the
+// log of a run that crashed once (on a user's machine, in CI) locates it. The crash is sent from
+// outside, to a monitor that would otherwise run for a minute.
+TEST(CliTest, ACrashIsReportedWithItsSignalAndStack) {
+  const CommandResult r = recon::testing::RunCommand(
+      std::string(RECON_CLI) + " uwb monitor --fake 1 --seconds 60 2>&1 & pid=$!; sleep 1; " +
+      "kill -SEGV $pid; wait $pid");
+  EXPECT_EQ(r.exit_code, 128 + 11) << r.output;
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  // Under a sanitizer its own handler reports the crash (crash_report.cc steps aside).
+  EXPECT_THAT(r.output, HasSubstr("Sanitizer")) << r.output;
+  return;
+#endif
+  EXPECT_THAT(r.output, HasSubstr("recon: crashed (SEGV, Segmentation fault)")) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("the stack of the thread that crashed"));
+  EXPECT_THAT(r.output, HasSubstr("recon(")) << "no frame of the program itself:\n" << r.output;
 }
 
 TEST(CliTest, AuthorsRecipeKeepsExplicitOptions) {

@@ -10,6 +10,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -85,6 +88,38 @@ TEST(CheckpointTest, RoundTripGivesTheSamePolicy) {
   EXPECT_EQ(resumed->network_config(), SmallImageNet());
   EXPECT_EQ(resumed->train_config(), ShortAuthors(30));
   EXPECT_TRUE(BitwiseEqual(Probe(resumed->policy(), data), Probe(trainer.policy(), data)));
+}
+
+// The studio trains its methods side by side, so two trainers save (and the rollouts load)
+// checkpoints at the same moment; the first of them also loads the Torch module. Each thread
+// writes and reads its own file many times over; every read must give back what was written.
+TEST(CheckpointTest, CheckpointsAreWrittenAndReadFromSeveralThreadsAtOnce) {
+  const Dataset data = MakeImageTask(3, 24, 16, 6);
+  Trainer trainer(data, SmallImageNet(), ShortAuthors(5));
+  trainer.Train();
+  const std::vector<float> expected = Probe(trainer.policy(), data);
+  constexpr int kThreads = 4, kRounds = 25;
+  std::vector<int> matches(kThreads, 0);
+  std::vector<std::string> errors(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      const std::string path = TempPath("threads_" + std::to_string(t) + ".ckpt");
+      try {
+        for (int round = 0; round < kRounds; ++round) {
+          trainer.SaveCheckpoint(path);
+          matches[t] += BitwiseEqual(Probe(LoadPolicy(path), data), expected) ? 1 : 0;
+        }
+      } catch (const std::exception& e) {
+        errors[t] = e.what();
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (int t = 0; t < kThreads; ++t) {
+    EXPECT_EQ(errors[t], "") << "thread " << t;
+    EXPECT_EQ(matches[t], kRounds) << "thread " << t;
+  }
 }
 
 TEST(CheckpointTest, ResumeContinuesExactly) {

@@ -11,7 +11,7 @@
 // of all num_params floats and sums those), 2.7-3.0 ms with one persistent leaf that the
 // weights are copied into and the gradient out of.
 
-#include "engine/learn/torch_step.h"
+#include "engine/learn/torch/torch_step_impl.h"
 
 #include <ATen/ATen.h>
 #include <c10/core/GradMode.h>
@@ -22,7 +22,6 @@
 #include <vector>
 
 #include "engine/learn/play_consistency.h"
-#include "engine/learn/spatial_softmax.h"
 
 namespace recon::learn {
 
@@ -67,11 +66,11 @@ at::Tensor Floors(const std::vector<float>& min_logvar) {
   return Wrap(min_logvar.data(), {static_cast<int64_t>(min_logvar.size())}).clone();
 }
 
-}  // namespace
-
-struct TorchStep::Impl {
+// What a step keeps between Forward and Backward, and the tensors made once.
+struct StepState {
   Architecture arch;
   TrainConfig train;
+  int64_t y_size = 0;
   at::Tensor demo_y, play_y;    ///< the batch's y rows gathered (the trainer holds pointers)
   at::Tensor x_coord, y_coord;  ///< spatial softmax only: [h * w] coordinates of each position
   /// The NLL's log-variance floors per dimension (Floors): the policy head's, the beacon net's.
@@ -99,7 +98,6 @@ struct TorchStep::Impl {
   }
 
   at::Tensor GatherY(const ModelBuffers& buffers, at::Tensor& rows) {
-    const int64_t y_size = arch.spec.YSize();
     float* out = rows.data_ptr<float>();
     for (int b = 0; b < buffers.batch; ++b) {
       std::copy_n(buffers.y[b], y_size, out + b * y_size);
@@ -129,21 +127,31 @@ struct TorchStep::Impl {
   }
 };
 
-TorchStep::TorchStep(const Architecture& arch, const TrainConfig& train)
-    : impl_(std::make_unique<Impl>()) {
-  impl_->arch = arch;
-  impl_->train = train;
+class TorchStepImpl final : public TorchStep {
+ public:
+  explicit TorchStepImpl(const TorchStepSetup& setup);
+  void Forward(const float* params, const TorchBatch& batch, StepMetrics& metrics) override;
+  void Backward(float* grads) override;
+
+ private:
+  StepState s_;
+};
+
+TorchStepImpl::TorchStepImpl(const TorchStepSetup& setup) {
+  const Architecture& arch = setup.arch;
+  s_.arch = arch;
+  s_.train = setup.train;
+  s_.y_size = setup.y_size;
   std::vector<int64_t> shape = arch.spec.y_shape;
-  shape.insert(shape.begin(), train.batch_size);
-  impl_->demo_y = at::empty(shape, at::kFloat);
-  impl_->play_y = at::empty(shape, at::kFloat);
-  impl_->policy_min_logvar =
-      Floors(train.PolicyMinLogVar(arch.spec.u_dim, arch.network.action_chunk));
-  impl_->beacon_min_logvar =
-      Floors(std::vector<float>(static_cast<size_t>(arch.spec.b_dim), train.NllMinLogVar()));
+  shape.insert(shape.begin(), setup.train.batch_size);
+  s_.demo_y = at::empty(shape, at::kFloat);
+  s_.play_y = at::empty(shape, at::kFloat);
+  s_.policy_min_logvar = Floors(setup.policy_min_logvar);
+  s_.beacon_min_logvar = Floors(setup.beacon_min_logvar);
   if (arch.spatial_softmax) {
     const SpatialSoftmaxLayer& k = arch.keypoints;
-    const std::vector<float> xs = KeypointCoordinates(k.w), ys = KeypointCoordinates(k.h);
+    const std::vector<float>& xs = setup.keypoint_x;
+    const std::vector<float>& ys = setup.keypoint_y;
     // Row-major planes: position r * w + c has x = xs[c], y = ys[r].
     std::vector<float> x_at, y_at;
     for (int r = 0; r < k.h; ++r) {
@@ -152,15 +160,13 @@ TorchStep::TorchStep(const Architecture& arch, const TrainConfig& train)
         y_at.push_back(ys[r]);
       }
     }
-    impl_->x_coord = Wrap(x_at.data(), {k.h * k.w}).clone();
-    impl_->y_coord = Wrap(y_at.data(), {k.h * k.w}).clone();
+    s_.x_coord = Wrap(x_at.data(), {k.h * k.w}).clone();
+    s_.y_coord = Wrap(y_at.data(), {k.h * k.w}).clone();
   }
 }
 
-TorchStep::~TorchStep() = default;
-
-void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetrics& metrics) {
-  Impl& s = *impl_;
+void TorchStepImpl::Forward(const float* params, const TorchBatch& batch, StepMetrics& metrics) {
+  StepState& s = s_;
   // Gradients are wanted even if a caller up the stack turned them off for inference.
   const c10::AutoGradMode grad_mode(true);
   s.leaves.clear();
@@ -238,8 +244,8 @@ void TorchStep::Forward(const float* params, const TorchBatch& batch, StepMetric
   s.total = total;
 }
 
-void TorchStep::Backward(float* grads) {
-  Impl& s = *impl_;
+void TorchStepImpl::Backward(float* grads) {
+  StepState& s = s_;
   if (!s.total.defined()) throw std::logic_error("TorchStep::Backward without Forward");
   // A defined .grad is accumulated into in place (AccumulateGrad), i.e. straight into `grads`.
   for (size_t i = 0; i < s.leaves.size(); ++i) {
@@ -255,6 +261,12 @@ void TorchStep::Backward(float* grads) {
   s.total.reset();
   s.leaves.clear();
   s.leaf_offsets.clear();
+}
+
+}  // namespace
+
+std::unique_ptr<TorchStep> NewTorchStep(const TorchStepSetup& setup) {
+  return std::make_unique<TorchStepImpl>(setup);
 }
 
 }  // namespace recon::learn
