@@ -1,16 +1,16 @@
 #include "devices/camera/image_file.h"
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "devices/camera/opencv_image.h"
+#include "devices/camera/opencv_io.h"
 #include "engine/core/error.h"
 
 namespace recon::camera {
 
 RgbImage ReadImage(const std::string& path) {
+  const OpenCvIo& io = LoadOpenCvIo();
   cv::Mat bgr;
   try {
-    bgr = cv::imread(path, cv::IMREAD_COLOR);
+    io.read_image(path, bgr);
   } catch (const cv::Exception& e) {
     throw UserError("cannot read the image " + path + ": " + e.err);
   }
@@ -23,9 +23,10 @@ void WriteImage(const std::string& path, const RgbImage& image) {
       image.rgb.size() != static_cast<size_t>(image.width) * image.height * 3) {
     throw UserError("cannot write " + path + ": the image is empty or malformed");
   }
+  const OpenCvIo& io = LoadOpenCvIo();
   bool ok = false;
   try {
-    ok = cv::imwrite(path, BgrFromRgb(image));
+    ok = io.write_image(path, BgrFromRgb(image));
   } catch (const cv::Exception& e) {
     throw UserError("cannot write the image " + path + ": " + e.err);
   }

@@ -4,16 +4,17 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/videoio.hpp>
+#include <opencv2/videoio.hpp>  // the CAP_ constants only: the calls go through opencv_io.h
 
 #include "devices/camera/opencv_image.h"
+#include "devices/camera/opencv_io.h"
 #include "devices/camera/undistorter.h"
 #include "engine/core/error.h"
 
 namespace recon::camera {
 
 struct OpenCvCamera::State {
-  cv::VideoCapture capture;
+  std::unique_ptr<VideoCaptureIo> capture = LoadOpenCvIo().new_capture();
   cv::Mat bgr;
   std::optional<devices::CameraFrame> pending;  // the first frame, read while opening
   std::optional<Undistorter> undistorter;
@@ -31,6 +32,14 @@ bool IsIndex(const std::string& device) {
 
 double SteadyNowS() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// cv::VideoWriter::fourcc, which would need videoio linked: the code's four bytes, first lowest.
+double FourCc(const std::string& code) {
+  uint32_t value = 0;
+  for (int i = 3; i >= 0; --i)
+    value = (value << 8) | static_cast<uint8_t>(code[static_cast<size_t>(i)]);
+  return static_cast<double>(value);
 }
 
 std::string FormatFps(double fps) {
@@ -54,41 +63,41 @@ OpenCvCamera::OpenCvCamera(const std::string& device, OpenCvCameraOptions option
   if (device.rfind("/dev/", 0) == 0 && !std::filesystem::exists(device)) {
     throw UserError("cannot open the " + what + ": no such device (is it plugged in?)");
   }
-  cv::VideoCapture& capture = state_->capture;
+  VideoCaptureIo& capture = *state_->capture;
   try {
     if (IsIndex(device)) {
-      capture.open(std::stoi(device), cv::CAP_V4L2);
+      capture.OpenIndex(std::stoi(device), cv::CAP_V4L2);
     } else if (live_) {
-      capture.open(device, cv::CAP_V4L2);
+      capture.Open(device, cv::CAP_V4L2);
     } else {
       // FFmpeg reads nearly every file; OpenCV's own MJPEG reader is the fallback for .avi
       // files where FFmpeg is missing. CAP_ANY would also try GStreamer and image patterns,
       // which only add noise on stderr for a file neither can read.
-      if (!capture.open(device, cv::CAP_FFMPEG)) capture.open(device, cv::CAP_OPENCV_MJPEG);
+      if (!capture.Open(device, cv::CAP_FFMPEG)) capture.Open(device, cv::CAP_OPENCV_MJPEG);
     }
   } catch (const cv::Exception& e) {
     throw UserError("cannot open the " + what + ": " + e.err);
   }
-  if (!capture.isOpened()) {
+  if (!capture.IsOpened()) {
     throw UserError("cannot open the " + what +
                     (live_ ? ": it is not a V4L2 capture device or is busy"
                            : ": OpenCV has no backend that can read it"));
   }
-  backend_ = capture.getBackendName();
+  backend_ = capture.BackendName();
   if (live_) {
     // Each request is a hint: the driver keeps the nearest mode it has; what it chose is read
     // back below from the first frame and CAP_PROP_FPS.
     if (options_.fourcc.size() == 4) {
       const std::string& f = options_.fourcc;
-      capture.set(cv::CAP_PROP_FOURCC, cv::VideoWriter::fourcc(f[0], f[1], f[2], f[3]));
+      capture.Set(cv::CAP_PROP_FOURCC, FourCc(f));
     } else if (!options_.fourcc.empty()) {
       throw UserError("the pixel format '" + options_.fourcc + "' is not a four-letter code");
     }
-    if (options_.width > 0) capture.set(cv::CAP_PROP_FRAME_WIDTH, options_.width);
-    if (options_.height > 0) capture.set(cv::CAP_PROP_FRAME_HEIGHT, options_.height);
-    if (options_.fps > 0) capture.set(cv::CAP_PROP_FPS, options_.fps);
+    if (options_.width > 0) capture.Set(cv::CAP_PROP_FRAME_WIDTH, options_.width);
+    if (options_.height > 0) capture.Set(cv::CAP_PROP_FRAME_HEIGHT, options_.height);
+    if (options_.fps > 0) capture.Set(cv::CAP_PROP_FPS, options_.fps);
   }
-  nominal_fps_ = std::max(0.0, capture.get(cv::CAP_PROP_FPS));
+  nominal_fps_ = std::max(0.0, capture.Get(cv::CAP_PROP_FPS));
 
   devices::CameraFrame first;
   for (int attempt = 0; attempt < options_.max_consecutive_failures; ++attempt) {
@@ -115,10 +124,10 @@ OpenCvCamera::OpenCvCamera(const std::string& device, OpenCvCameraOptions option
 OpenCvCamera::~OpenCvCamera() = default;
 
 bool OpenCvCamera::ReadFrame(devices::CameraFrame* frame) {
-  cv::VideoCapture& capture = state_->capture;
+  VideoCaptureIo& capture = *state_->capture;
   bool ok = false;
   try {
-    ok = capture.read(state_->bgr) && !state_->bgr.empty();
+    ok = capture.Read(state_->bgr) && !state_->bgr.empty();
   } catch (const cv::Exception&) {
     ok = false;  // a backend that throws mid-stream is treated like one that returns nothing
   }
@@ -138,7 +147,7 @@ bool OpenCvCamera::ReadFrame(devices::CameraFrame* frame) {
       }
     }
   } else {
-    timestamp_s = loop_offset_s_ + capture.get(cv::CAP_PROP_POS_MSEC) / 1000.0;
+    timestamp_s = loop_offset_s_ + capture.Get(cv::CAP_PROP_POS_MSEC) / 1000.0;
   }
   last_timestamp_s_ = timestamp_s;
   frame->image = RgbFromMat(state_->bgr, device_);
@@ -172,7 +181,7 @@ devices::CameraFrame OpenCvCamera::Capture() {
       // The next loop starts one period after the last frame, so timestamps keep increasing.
       const double period_s = nominal_fps_ > 0.0 ? 1.0 / nominal_fps_ : 0.0;
       loop_offset_s_ = last_timestamp_s_ + period_s;
-      state_->capture.set(cv::CAP_PROP_POS_FRAMES, 0);
+      state_->capture->Set(cv::CAP_PROP_POS_FRAMES, 0);
       ok = ReadFrame(&frame);
     }
     if (!ok) {

@@ -1,7 +1,9 @@
 #include "engine/calib/rigid_fit.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -34,8 +36,14 @@ Eigen::Matrix<double, D, Eigen::Dynamic> Columns(const std::vector<Eigen::Vector
 template <int D>
 void CheckSpread(const Eigen::Matrix<double, D, Eigen::Dynamic>& m, FitDimension dimension) {
   const Eigen::Matrix<double, D, Eigen::Dynamic> centred = m.colwise() - m.rowwise().mean();
-  const Eigen::JacobiSVD<Eigen::Matrix<double, D, Eigen::Dynamic>> svd(centred);
-  const auto s = svd.singularValues();
+  // The centred points' singular values, largest first, as the square roots of the eigenvalues
+  // of their D x D scatter matrix: the same numbers as a JacobiSVD of the D x n matrix, whose
+  // instantiation alone took this file 60 s to compile.
+  const Eigen::Matrix<double, D, D> scatter = centred * centred.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, D, D>> eigen(scatter,
+                                                                         Eigen::EigenvaluesOnly);
+  Eigen::Matrix<double, D, 1> s;
+  for (int i = 0; i < D; ++i) s(i) = std::sqrt(std::max(0.0, eigen.eigenvalues()(D - 1 - i)));
   const double scale = std::sqrt(static_cast<double>(m.cols()));
   if (s(0) / scale < kMinSpreadM) {
     throw UserError("calibration points all lie in one place: move the beacon between points");

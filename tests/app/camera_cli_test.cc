@@ -73,6 +73,23 @@ TEST(CameraCliTest, InfoOnAVideoFileGivesSizeRateBackendAndIntrinsics) {
   EXPECT_THAT(text.output, HasSubstr("15.00 fps measured"));
 }
 
+// OpenCV's video and image-file libraries are loaded only by what reads a camera or an image
+// (opencv_io.h): with the module unreachable, help still runs and reading a video file stops with
+// an error that names the module's path.
+TEST(CameraCliTest, OpenCvIoIsLoadedOnlyByWhatNeedsIt) {
+  ScratchDir dir;
+  camera::testing::WriteBarVideo(dir / "bars.avi", 5, 15.0);
+  const std::string missing = dir / "librecon_opencv_io.so";
+  const std::string env = "RECON_OPENCV_IO_MODULE=" + missing + " ";
+  const testing::CommandResult help = testing::RunCommand(env + RECON_CLI + " --help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  const testing::CommandResult info =
+      testing::RunCommand(env + RECON_CLI + " camera info --device " + (dir / "bars.avi"));
+  EXPECT_EQ(info.exit_code, 2) << info.output;
+  EXPECT_THAT(info.output, HasSubstr("cannot load the OpenCV I/O module " + missing));
+  EXPECT_THAT(info.output, HasSubstr("cameras and image files need it"));
+}
+
 TEST(CameraCliTest, GrabSavesNumberedFramesFromAFolderAndUndistorts) {
   ScratchDir dir;
   std::filesystem::create_directories(dir / "frames");
