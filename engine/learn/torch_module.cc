@@ -1,12 +1,10 @@
 #include "engine/learn/torch_module.h"
 
-#include <dlfcn.h>
-
 #include <atomic>
-#include <cstdlib>
 #include <mutex>
 
 #include "engine/core/error.h"
+#include "engine/core/loadable_module.h"
 #include "engine/learn/spatial_softmax.h"
 
 #ifndef RECON_TORCH_MODULE_PATH
@@ -17,43 +15,19 @@ namespace recon::learn {
 
 namespace {
 
-using ModuleEntry = const TorchModule* (*)();
-
 std::mutex load_mutex;
 std::atomic<const TorchModule*> loaded{nullptr};
 // The --threads setting, applied to Torch when (and each time after) the module is loaded.
 std::atomic<int> torch_threads{1};
 
-std::string ModulePath() {
-  const char* override_path = std::getenv("RECON_TORCH_MODULE");
-  return override_path != nullptr && override_path[0] != '\0' ? override_path
-                                                              : RECON_TORCH_MODULE_PATH;
-}
-
 const TorchModule* Load() {
-  const std::string path = ModulePath();
-  const std::string why = "checkpoints and the Torch backend need it; ./scripts/build builds it";
-  // RTLD_LOCAL: LibTorch's symbols stay the module's. The handle is never closed: Torch
-  // registers static state that must outlive every tensor.
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (handle == nullptr) {
-    const char* error = dlerror();
-    throw UserError("cannot load the Torch module " + path + " (" +
-                    (error != nullptr ? error : "unknown error") + "): " + why);
-  }
-  const auto entry = reinterpret_cast<ModuleEntry>(dlsym(handle, kTorchModuleEntry));
-  if (entry == nullptr) {
-    throw UserError("the Torch module " + path + " has no " + kTorchModuleEntry + ": " + why);
-  }
-  const TorchModule* module = entry();
-  if (module == nullptr || module->interface_version != kTorchModuleInterface) {
-    throw UserError("the Torch module " + path + " was built for another version of recon (" +
-                    "interface " +
-                    std::to_string(module != nullptr ? module->interface_version : 0) +
-                    ", expected " + std::to_string(kTorchModuleInterface) + "): " + why);
-  }
-  module->set_threads(torch_threads.load());
-  return module;
+  const LoadableModule module = {ModulePath("RECON_TORCH_MODULE", RECON_TORCH_MODULE_PATH),
+                                 kTorchModuleEntry, "the Torch module",
+                                 "checkpoints and the Torch backend need it"};
+  const auto* table =
+      static_cast<const TorchModule*>(LoadModuleTable(module, kTorchModuleInterface));
+  table->set_threads(torch_threads.load());
+  return table;
 }
 
 }  // namespace

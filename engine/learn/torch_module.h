@@ -8,7 +8,8 @@
 // the studio until it trains or loads a model) no longer pays it. Internal to the learner.
 //
 // The interface is C++: the module is built by the same build with the same compiler and
-// standard library, and the loader refuses a module of another interface version.
+// standard library, and the loader refuses a module of another interface version
+// (engine/core/loadable_module.h).
 
 #include <memory>
 #include <string>
