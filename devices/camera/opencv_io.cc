@@ -1,8 +1,5 @@
 #include "devices/camera/opencv_io.h"
 
-#include <atomic>
-#include <mutex>
-
 #include "engine/core/loadable_module.h"
 
 #ifndef RECON_OPENCV_IO_MODULE_PATH
@@ -13,9 +10,6 @@ namespace recon::camera {
 
 namespace {
 
-std::mutex load_mutex;
-std::atomic<const OpenCvIo*> loaded{nullptr};
-
 const OpenCvIo* Load() {
   const LoadableModule module = {ModulePath("RECON_OPENCV_IO_MODULE", RECON_OPENCV_IO_MODULE_PATH),
                                  kOpenCvIoEntry, "the OpenCV I/O module",
@@ -23,13 +17,10 @@ const OpenCvIo* Load() {
   return static_cast<const OpenCvIo*>(LoadModuleTable(module, kOpenCvIoInterface));
 }
 
+LazyModuleTable<OpenCvIo> opencv_io(&Load);
+
 }  // namespace
 
-const OpenCvIo& LoadOpenCvIo() {
-  if (const OpenCvIo* module = loaded.load(std::memory_order_acquire)) return *module;
-  const std::lock_guard<std::mutex> lock(load_mutex);
-  if (loaded.load() == nullptr) loaded.store(Load(), std::memory_order_release);
-  return *loaded.load();
-}
+const OpenCvIo& LoadOpenCvIo() { return opencv_io.Get(); }
 
 }  // namespace recon::camera

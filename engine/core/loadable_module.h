@@ -6,6 +6,8 @@
 // (devices/camera/opencv_io.h). A module exports one extern "C" function returning a table of
 // what it offers, whose first member is the table's interface version.
 
+#include <atomic>
+#include <mutex>
 #include <string>
 
 namespace recon {
@@ -25,5 +27,34 @@ std::string ModulePath(const char* environment_variable, const char* built_path)
 /// and returns its entry function's table. UserError naming the path when the file cannot be
 /// loaded, has no entry, or its table's version is not `interface_version`.
 const void* LoadModuleTable(const LoadableModule& module, int interface_version);
+
+/// A module's table, loaded by `load` (which calls LoadModuleTable) on the first Get() of any
+/// thread, once.
+template <typename Table>
+class LazyModuleTable {
+ public:
+  using Loader = const Table* (*)();
+  explicit constexpr LazyModuleTable(Loader load) : load_(load) {}
+
+  const Table& Get() {
+    if (const Table* table = table_.load(std::memory_order_acquire)) return *table;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (table_.load() == nullptr) table_.store(load_(), std::memory_order_release);
+    return *table_.load();
+  }
+
+  /// Runs f(table) if the table is loaded, never during a load: a setting changed before this
+  /// call is either read by a load in progress or applied here once it has finished.
+  template <typename F>
+  void IfLoaded(F f) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (const Table* table = table_.load()) f(*table);
+  }
+
+ private:
+  const Loader load_;
+  std::mutex mutex_;
+  std::atomic<const Table*> table_{nullptr};
+};
 
 }  // namespace recon

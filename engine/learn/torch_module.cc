@@ -1,7 +1,6 @@
 #include "engine/learn/torch_module.h"
 
 #include <atomic>
-#include <mutex>
 
 #include "engine/core/error.h"
 #include "engine/core/loadable_module.h"
@@ -15,8 +14,6 @@ namespace recon::learn {
 
 namespace {
 
-std::mutex load_mutex;
-std::atomic<const TorchModule*> loaded{nullptr};
 // The --threads setting, applied to Torch when (and each time after) the module is loaded.
 std::atomic<int> torch_threads{1};
 
@@ -30,16 +27,11 @@ const TorchModule* Load() {
   return table;
 }
 
+LazyModuleTable<TorchModule> torch_module(&Load);
+
 }  // namespace
 
-const TorchModule& Torch() {
-  if (const TorchModule* module = loaded.load(std::memory_order_acquire)) return *module;
-  const std::lock_guard<std::mutex> lock(load_mutex);
-  if (loaded.load() == nullptr) loaded.store(Load(), std::memory_order_release);
-  return *loaded.load();
-}
-
-bool TorchLoaded() { return loaded.load() != nullptr; }
+const TorchModule& Torch() { return torch_module.Get(); }
 
 void SetThreads(int threads) {
   if (threads < 1) {
@@ -47,8 +39,7 @@ void SetThreads(int threads) {
   }
   torch_threads.store(threads);
   // Loading Torch only to set its thread count would cost every command its start-up time.
-  const std::lock_guard<std::mutex> lock(load_mutex);
-  if (const TorchModule* module = loaded.load()) module->set_threads(threads);
+  torch_module.IfLoaded([threads](const TorchModule& module) { module.set_threads(threads); });
 }
 
 std::unique_ptr<TorchStep> MakeTorchStep(const Architecture& arch, const TrainConfig& train) {

@@ -60,7 +60,4 @@ constexpr char kTorchModuleEntry[] = "ReconTorchModule";
 /// or $RECON_TORCH_MODULE when set. UserError naming the path when it cannot be loaded.
 const TorchModule& Torch();
 
-/// Whether the module has been loaded in this process (for tests: nothing loads it early).
-bool TorchLoaded();
-
 }  // namespace recon::learn
