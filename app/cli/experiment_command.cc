@@ -72,7 +72,9 @@ struct ExperimentFlags {
   double play_consistency = 0.0;  ///< only when --play-consistency was given
   double nll_min_std = 0.0;       ///< only when --nll-min-std was given
   double gripper_min_std = 0.0;   ///< only when --gripper-min-std was given
-  double feature_gate = 0.0;      ///< the gate margin, only when --feature-gate was given
+  double weight_decay = 0.0;      ///< only when --weight-decay was given
+  int policy_ensemble = 1;
+  double feature_gate = 0.0;  ///< the gate margin, only when --feature-gate was given
   bool no_feature_gate = false;
   std::string gate_target;          ///< "loss" | "disagreement"; empty: the world's recipe
   std::string lr_schedule;          ///< "constant" | "cosine"; empty: the world's recipe
@@ -160,6 +162,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     throw UserError("--targets must be 'standardized' or 'raw' (got '" + flags.targets + "')");
   }
   config.baseline_steps = flags.baseline_steps;
+  config.policy_ensemble = flags.policy_ensemble;
   config.play_per_scenario = flags.play;
   config.network.policy_hidden = recipe.network.policy_hidden;
   config.network.image_scale = recipe.network.image_scale;
@@ -175,6 +178,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
       given("--play-consistency") ? flags.play_consistency : recipe.train.play_consistency;
   config.train.nll_min_std = given("--nll-min-std") ? flags.nll_min_std : recipe.train.nll_min_std;
   config.train.action_min_std = recipe.train.action_min_std;
+  config.train.weight_decay =
+      given("--weight-decay") ? flags.weight_decay : recipe.train.weight_decay;
   if (given("--gripper-min-std")) {
     if (flags.world != "tabletop") {
       throw UserError("--gripper-min-std: the " + flags.world +
@@ -433,6 +438,17 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
                    "tabletop: a floor like --nll-min-std under the policy's spread of the gripper "
                    "command alone, the joints' untouched (0 = none; default: the world's recipe)")
       ->check(NumberBetween(0, learn::kMaxNllMinStd));
+  command
+      ->add_option("--policy-ensemble", flags->policy_ensemble,
+                   "models trained per run from different seeds that act as one (their mean "
+                   "action; a deep ensemble), both methods alike; 1 = one model, the paper's")
+      ->check(WholeBetween(1, experiments::kMaxPolicyEnsemble));
+  command
+      ->add_option("--weight-decay", flags->weight_decay,
+                   "decoupled weight decay (AdamW) of every network's weights, per unit of "
+                   "learning rate; both methods alike (0 = off, the paper's; default: the "
+                   "world's recipe)")
+      ->check(NumberBetween(0, learn::kMaxWeightDecay));
   CLI::Option* gate =
       command
           ->add_option("--feature-gate", flags->feature_gate,

@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/cli/option_checks.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
+#include "engine/core/parallel_for.h"
 #include "engine/core/progress.h"
 #include "engine/learn/learner.h"
 #include "engine/store/session.h"
@@ -38,7 +42,15 @@ struct TrainFlags {
 };
 
 void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
-  for (const std::string& method : flags.methods) learn::ParseMethod(method);
+  for (size_t i = 0; i < flags.methods.size(); ++i) {
+    learn::ParseMethod(flags.methods[i]);
+    // Methods train at once, each into its own checkpoint: one named twice would write one file
+    // from two threads.
+    if (std::find(flags.methods.begin(), flags.methods.begin() + i, flags.methods[i]) !=
+        flags.methods.begin() + i) {
+      throw UserError("--methods: " + flags.methods[i] + " is named twice");
+    }
+  }
   // Read-write: training results go into the session (and the writer lock keeps a recording
   // from changing the data underneath).
   const store::Session session = store::Session::Open(flags.session);
@@ -69,16 +81,46 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
               flags.session.c_str(), session.manifest().world.c_str(), names.c_str(),
               static_cast<unsigned long long>(options.seed));
   std::fflush(stdout);
-  for (const std::string& method : flags.methods) {
-    std::unique_ptr<ProgressLine> progress;
-    int done = 0;
-    const json record =
-        TrainSessionMethod(session, method, options, [&](const TrainingProgress& p) {
-          if (!progress) progress = std::make_unique<ProgressLine>("training " + p.label, p.steps);
-          progress->Advance(p.step - done);
-          done = p.step;
-        });
-    if (progress) progress->Finish();
+  // Each trainer runs on one core (learner.h) and its result does not depend on what else runs,
+  // so the methods train side by side, as in the studio: on 2 cores both take the slower one's
+  // time. One bar counts the steps of all of them.
+  const int steps = WithRecipeDefaults(session, options).steps;
+  ProgressLine progress("training " + names,
+                        static_cast<int64_t>(steps) * static_cast<int64_t>(flags.methods.size()));
+  std::vector<int> done(flags.methods.size(), 0);
+  std::vector<std::string> labels(flags.methods.size());
+  std::mutex progress_mutex;
+  const auto report = [&](size_t i, const TrainingProgress& p) {
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    labels[i] = p.label;
+    // A restart (the authors' rule) starts again at step 0; the bar holds until it passes
+    // where it was.
+    const int advance = std::max(0, p.step - done[i]);
+    done[i] += advance;
+    std::string detail;
+    for (size_t j = 0; j < done.size(); ++j) {
+      if (!labels[j].empty()) {
+        detail += (detail.empty() ? "" : ", ") + labels[j] + " " + std::to_string(done[j]);
+      }
+    }
+    progress.Advance(advance, detail);
+  };
+  std::vector<json> records(flags.methods.size());
+  std::vector<std::exception_ptr> errors(flags.methods.size());
+  ParallelFor(
+      flags.methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
+        try {
+          records[i] = TrainSessionMethod(session, flags.methods[i], options,
+                                          [&, i](const TrainingProgress& p) { report(i, p); });
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      });
+  progress.Finish();
+  // A method that finished keeps its checkpoint and says so; then the first failure is reported.
+  for (size_t i = 0; i < flags.methods.size(); ++i) {
+    if (errors[i]) continue;
+    const json& record = records[i];
     const bool has_valid = !record["valid_action_mse"].is_null();
     std::printf(
         "%-14s %d demos (%lld samples), %d play, %d steps in %.1f s, seed %llu: action MSE "
@@ -91,6 +133,10 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
         has_valid ? (", valid " + std::to_string(record["valid_action_mse"].get<double>())).c_str()
                   : "",
         flags.session.c_str(), record["checkpoint"].get<std::string>().c_str());
+  }
+  std::fflush(stdout);
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
   }
 }
 

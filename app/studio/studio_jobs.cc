@@ -8,6 +8,7 @@
 
 #include "devices/cell/sim_calibration.h"
 #include "engine/calib/calibration.h"
+#include "engine/core/parallel_for.h"
 #include "engine/teach/workflow.h"
 
 namespace recon::studio {
@@ -71,14 +72,7 @@ std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session
       jobs.Update([&](JobState& state) { state.training[i].running = false; });
     }
   };
-  const size_t parallel = std::max<size_t>(1, std::thread::hardware_concurrency());
-  for (size_t first = 0; first < methods.size(); first += parallel) {
-    std::vector<std::thread> threads;
-    for (size_t i = first; i < std::min(methods.size(), first + parallel); ++i) {
-      threads.emplace_back(train_one, i);
-    }
-    for (std::thread& t : threads) t.join();
-  }
+  ParallelFor(methods.size(), std::max(1u, std::thread::hardware_concurrency()), train_one);
   // What one method's failure says is reported; a method that finished keeps its checkpoint.
   for (const std::exception_ptr& error : errors) {
     if (error) std::rethrow_exception(error);

@@ -37,7 +37,9 @@ void ProgressLine::Advance(int64_t n, const std::string& detail) {
   if (!detail.empty()) detail_ = detail;
   const auto now = std::chrono::steady_clock::now();
   const double since_draw = std::chrono::duration<double>(now - last_draw_).count();
-  if (since_draw >= (is_tty_ ? 0.1 : 5.0) || done_ == total_) {
+  // The end is drawn at once, but once: a job that keeps reporting there (a training run
+  // restarted by its rule) must not fill a log with copies of the same line.
+  if (since_draw >= (is_tty_ ? 0.1 : 5.0) || (done_ == total_ && drawn_done_ != done_)) {
     last_draw_ = now;
     Draw(false);
   }

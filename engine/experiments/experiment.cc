@@ -47,6 +47,11 @@ void ValidateExperimentConfig(const ExperimentConfig& config) {
     if (d <= 0) throw UserError("--demos must be positive (got " + std::to_string(d) + ")");
   }
   if (config.runs <= 0) throw UserError("--runs must be positive");
+  if (config.policy_ensemble < 1 || config.policy_ensemble > kMaxPolicyEnsemble) {
+    throw UserError("--policy-ensemble must be between 1 and " +
+                    std::to_string(kMaxPolicyEnsemble) + " models (got " +
+                    std::to_string(config.policy_ensemble) + ")");
+  }
   if (config.tests <= 0) throw UserError("--tests must be positive");
   if (config.jobs <= 0) throw UserError("--jobs must be positive");
   if (config.play_per_scenario < -1) throw UserError("--play must not be negative");
@@ -172,12 +177,23 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   }
 
   const auto start = std::chrono::steady_clock::now();
+  std::vector<learn::Policy> members;
   try {
     const learn::TrainResult trained = trainer.Train(cancel);
     result.attempts = trained.attempts;
     result.train_steps = trained.steps_run;
     result.final_losses = trained.final_metrics;
     if (trained.cancelled) throw UserError("cancelled");
+    members.push_back(trainer.policy());
+    // The ensemble's other models: the same data, their own seeds (the first model's losses
+    // and steps are the ones reported).
+    for (int m = 1; m < config.policy_ensemble; ++m) {
+      learn::TrainConfig member_train = train;
+      member_train.seed = Rng::Derive(train.seed, static_cast<uint64_t>(m));
+      learn::Trainer member(data, config.network, member_train);
+      if (member.Train(cancel).cancelled) throw UserError("cancelled");
+      members.push_back(member.policy());
+    }
   } catch (const DivergenceError& e) {
     // A diverged run is an outcome of this seed, not a reason to lose the whole sweep: it is
     // recorded with a NaN metric, counted in the summary, and left out of the means.
@@ -190,7 +206,7 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
   result.train_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  const learn::Policy policy = trainer.policy();
+  const learn::Policy policy = learn::Policy::Ensemble(members);
   const WorldMaker make_test_world = [&] {
     return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
   };

@@ -35,7 +35,14 @@ struct ExperimentConfig {
   /// Noise injected into the executed actions while the demonstrations are recorded (DART,
   /// worlds::DemoNoise), in the action's units; 0 = off.
   double demo_noise = 0.0;
+  /// Models trained per run from different training seeds, acting as one (learn::Policy::
+  /// Ensemble): model 0 from the run's training seed, model m from Rng::Derive(it, m). 1 = one
+  /// model (the paper's); at most kMaxPolicyEnsemble.
+  int policy_ensemble = 1;
 };
+
+/// The largest ExperimentConfig::policy_ensemble accepted.
+constexpr int kMaxPolicyEnsemble = 16;
 
 /// The outcome of one training run of one condition.
 struct RunResult {

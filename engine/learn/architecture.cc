@@ -1,5 +1,6 @@
 #include "engine/learn/architecture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -155,6 +156,23 @@ Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& networ
   }
   arch.num_params = layout.size();
   return arch;
+}
+
+std::vector<ParamRange> WeightRanges(const Architecture& arch) {
+  std::vector<ParamRange> ranges;
+  for (const ConvLayer& conv : arch.convs) {
+    ranges.push_back({conv.weight, static_cast<int64_t>(conv.out_channels) * conv.in_channels *
+                                       conv.kernel * conv.kernel});
+  }
+  for (const std::vector<LinearLayer>* mlp :
+       {&arch.feature, &arch.policy, &arch.beacon, &arch.gate}) {
+    for (const LinearLayer& layer : *mlp) {
+      ranges.push_back({layer.weight, static_cast<int64_t>(layer.in) * layer.out});
+    }
+  }
+  std::sort(ranges.begin(), ranges.end(),
+            [](const ParamRange& a, const ParamRange& b) { return a.offset < b.offset; });
+  return ranges;
 }
 
 void InitializeParameters(const Architecture& arch, Rng& rng, float* params) {

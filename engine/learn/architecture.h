@@ -75,6 +75,15 @@ struct Architecture {
 /// example an image too small for the convolutions).
 Architecture BuildArchitecture(const DataSpec& spec, const NetworkConfig& network, Method method);
 
+/// A run of parameters in the flat buffer: [offset, offset + size).
+struct ParamRange {
+  int64_t offset = 0, size = 0;
+};
+
+/// Where the weights are (TrainConfig::weight_decay): every linear layer's W and every
+/// convolution's kernel, in buffer order; biases and the spatial softmax's temperature are not.
+std::vector<ParamRange> WeightRanges(const Architecture& arch);
+
 /// The authors' initialisation: Xavier-uniform weights and zero biases for linear layers,
 /// PyTorch's default for convolutions (kaiming-uniform with a = sqrt(5), i.e. U(+-1/sqrt(fan_in))
 /// for weights and biases). All draws come from `rng`, so a seed fixes the model. The spatial

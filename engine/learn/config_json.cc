@@ -66,6 +66,7 @@ std::string ToJson(const TrainConfig& t) {
   j["play_consistency"] = t.play_consistency;
   j["nll_min_std"] = t.nll_min_std;
   j["action_min_std"] = t.action_min_std;
+  j["weight_decay"] = t.weight_decay;
   j["gate_margin"] = t.gate_margin;
   j["gate_target"] = ToString(t.gate_target);
   j["lr_schedule"] = ToString(t.lr_schedule);
@@ -144,6 +145,8 @@ TrainConfig TrainConfigFromJson(const std::string& text) {
   if (j.contains("play_consistency")) Read(j, "play_consistency", t.play_consistency, what);
   if (j.contains("nll_min_std")) Read(j, "nll_min_std", t.nll_min_std, what);
   if (j.contains("action_min_std")) Read(j, "action_min_std", t.action_min_std, what);
+  // ... and without weight decay.
+  if (j.contains("weight_decay")) Read(j, "weight_decay", t.weight_decay, what);
   if (j.contains("gate_margin")) Read(j, "gate_margin", t.gate_margin, what);
   // ... and, before the choice existed, gated by the loss.
   if (j.contains("gate_target")) {

@@ -145,6 +145,9 @@ constexpr double kMaxPlayConsistency = 100.0;
 constexpr double kMaxNllMinStd = 10.0;
 /// The largest TrainConfig::gate_margin accepted (nats per action).
 constexpr double kMaxGateMargin = 100.0;
+/// The largest TrainConfig::weight_decay accepted (per unit of learning rate; with the tabletop's
+/// rate of 1e-3 it takes 1 % off every weight per step).
+constexpr double kMaxWeightDecay = 10.0;
 
 /// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
 /// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).
@@ -228,6 +231,14 @@ struct TrainConfig {
   /// a floor on every dimension blurs them too (docs/results.md). Where both are set the higher
   /// floor holds. Each at most kMaxNllMinStd. Checkpoints from before read empty.
   std::vector<double> action_min_std;
+  /// Decoupled weight decay (AdamW, Loshchilov & Hutter): before each Adam step every weight of
+  /// every layer (linear weights and convolution kernels; biases and the spatial softmax's
+  /// temperature excluded) is multiplied by 1 - lr_t * weight_decay, lr_t the step's scheduled
+  /// rate. A weight that no demonstration's gradient holds up (the response to a feature
+  /// direction the demonstrations never varied, a bowl where none had it) decays towards 0
+  /// instead of keeping its random initial value. Applies to every method alike. 0 = off
+  /// (results unchanged); at most kMaxWeightDecay. Checkpoints from before read 0.
+  double weight_decay = 0.0;
   /// The floor nll_min_std as a log-variance (-infinity without one).
   float NllMinLogVar() const;
   /// Per dimension of the policy head's mean (chunk x u_dim, as the training targets): the
@@ -291,6 +302,17 @@ class Policy {
   Policy(const Policy&);
   Policy& operator=(const Policy&);
 
+  /// A deep ensemble (Lakshminarayanan et al.): one policy whose actions (and chunks, and
+  /// feature gate) are the mean of its members' mean predictions. The members are models of the
+  /// same shapes and chunking trained from different seeds; averaging them takes out what one
+  /// training run's seed alone decided (on 4 tabletop demonstrations a run grasps in most new
+  /// scenes or in almost none, docs/results.md). Features and beacon predictions, which do not
+  /// average across models, are the first member's. UserError if the list is empty or the
+  /// members differ in data shapes, chunk or ensembled actions.
+  static Policy Ensemble(const std::vector<Policy>& members);
+  /// How many models act (1 for a trained or loaded policy).
+  int ensemble_size() const;
+
   const DataSpec& spec() const;
   /// Mean action for one observation.
   std::vector<float> Act(const std::vector<float>& x, const std::vector<float>& y) const;
@@ -321,7 +343,13 @@ class Policy {
   std::vector<float> Features(const std::vector<float>& x, const std::vector<float>& y) const;
 
  private:
+  /// The members' outputs of one kind (PolicyImpl::Output), averaged row by row.
+  std::vector<std::vector<float>> RunAveraged(int output, const std::vector<std::vector<float>>& xs,
+                                              const std::vector<std::vector<float>>& ys,
+                                              std::vector<float>* gates) const;
+
   std::shared_ptr<PolicyImpl> impl_;
+  std::vector<std::shared_ptr<PolicyImpl>> others_;  ///< Ensemble's members after the first
 };
 
 class TrainerImpl;

@@ -114,16 +114,65 @@ PolicyImpl& Require(const std::shared_ptr<PolicyImpl>& impl) {
 
 }  // namespace
 
+Policy Policy::Ensemble(const std::vector<Policy>& members) {
+  if (members.empty()) throw UserError("a policy ensemble needs at least one member");
+  Policy ensemble(members.front().impl_);  // the first member's own members are added below
+  const Architecture& first = Require(ensemble.impl_).arch();
+  for (size_t i = 0; i < members.size(); ++i) {
+    const Policy& member = members[i];
+    if (i > 0) ensemble.others_.push_back(member.impl_);
+    ensemble.others_.insert(ensemble.others_.end(), member.others_.begin(), member.others_.end());
+    const Architecture& a = Require(member.impl_).arch();
+    if (!(a.spec == first.spec) || a.network.action_chunk != first.network.action_chunk ||
+        a.network.ensembled_actions != first.network.ensembled_actions) {
+      throw UserError("policy ensemble: member " + std::to_string(i) +
+                      " differs from the first in its data shapes, action chunk or ensembled "
+                      "actions");
+    }
+  }
+  return ensemble;
+}
+
+int Policy::ensemble_size() const { return 1 + static_cast<int>(others_.size()); }
+
+std::vector<std::vector<float>> Policy::RunAveraged(int output,
+                                                    const std::vector<std::vector<float>>& xs,
+                                                    const std::vector<std::vector<float>>& ys,
+                                                    std::vector<float>* gates) const {
+  const auto kind = static_cast<PolicyImpl::Output>(output);
+  std::vector<std::vector<float>> sum = Require(impl_).Run(kind, xs, ys, gates);
+  if (others_.empty()) return sum;
+  std::vector<float> member_gates;
+  for (const std::shared_ptr<PolicyImpl>& member : others_) {
+    const std::vector<std::vector<float>> rows =
+        member->Run(kind, xs, ys, gates != nullptr ? &member_gates : nullptr);
+    for (size_t r = 0; r < sum.size(); ++r) {
+      for (size_t j = 0; j < sum[r].size(); ++j) sum[r][j] += rows[r][j];
+    }
+    if (gates != nullptr) {
+      for (size_t r = 0; r < gates->size(); ++r) (*gates)[r] += member_gates[r];
+    }
+  }
+  const float scale = 1.0f / static_cast<float>(ensemble_size());
+  for (std::vector<float>& row : sum) {
+    for (float& v : row) v *= scale;
+  }
+  if (gates != nullptr) {
+    for (float& g : *gates) g *= scale;
+  }
+  return sum;
+}
+
 const DataSpec& Policy::spec() const { return Require(impl_).arch().spec; }
 
 std::vector<float> Policy::Act(const std::vector<float>& x, const std::vector<float>& y) const {
-  return Require(impl_).Run(PolicyImpl::Output::kAction, {x}, {y}).front();
+  return RunAveraged(static_cast<int>(PolicyImpl::Output::kAction), {x}, {y}, nullptr).front();
 }
 
 std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<float>>& xs,
                                                  const std::vector<std::vector<float>>& ys,
                                                  std::vector<float>* gates) const {
-  return Require(impl_).Run(PolicyImpl::Output::kAction, xs, ys, gates);
+  return RunAveraged(static_cast<int>(PolicyImpl::Output::kAction), xs, ys, gates);
 }
 
 int Policy::action_chunk() const { return Require(impl_).arch().network.action_chunk; }
@@ -135,13 +184,15 @@ const std::vector<int>& Policy::ensembled_actions() const {
 std::vector<std::vector<float>> Policy::ActChunkBatch(const std::vector<std::vector<float>>& xs,
                                                       const std::vector<std::vector<float>>& ys,
                                                       std::vector<float>* gates) const {
-  return Require(impl_).Run(PolicyImpl::Output::kActionChunk, xs, ys, gates);
+  return RunAveraged(static_cast<int>(PolicyImpl::Output::kActionChunk), xs, ys, gates);
 }
 
 bool Policy::has_feature_gate() const { return Require(impl_).arch().has_gate(); }
 
 float Policy::FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const {
-  return Require(impl_).Run(PolicyImpl::Output::kGate, {x}, {y}).front().front();
+  return RunAveraged(static_cast<int>(PolicyImpl::Output::kGate), {x}, {y}, nullptr)
+      .front()
+      .front();
 }
 
 std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,

@@ -60,6 +60,12 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     FormatNumber(kMaxGateMargin) + " (got " + FormatNumber(train.gate_margin) +
                     ")");
   }
+  if (!std::isfinite(train.weight_decay) || train.weight_decay < 0 ||
+      train.weight_decay > kMaxWeightDecay) {
+    throw UserError("train config: weight_decay must be between 0 and " +
+                    FormatNumber(kMaxWeightDecay) + " (got " + FormatNumber(train.weight_decay) +
+                    ")");
+  }
   if (!std::isfinite(train.feature_noise) || train.feature_noise < 0 ||
       train.feature_noise > kMaxFeatureNoise) {
     throw UserError("train config: feature_noise must be between 0 and " +

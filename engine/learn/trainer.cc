@@ -98,6 +98,7 @@ TrainerImpl::TrainerImpl(const Dataset& data, const NetworkConfig& network,
       batch_gate_targets_.assign(static_cast<size_t>(batch), 0.0f);
     }
   }
+  if (train.weight_decay > 0) decayed_ = WeightRanges(arch_);
   if (train.backend == Backend::kTorch) torch_ = MakeTorchStep(arch_, train_);
   StartAttempt(0);
 }
@@ -238,6 +239,14 @@ void TrainerImpl::Step() {
   a.exp_avg_sq = exp_avg_sq_.data();
   a.lr = static_cast<float>(
       ScheduledLearningRate(train_.learning_rate, train_.lr_schedule, step_, train_.steps));
+  // Decoupled weight decay comes first, as PyTorch's AdamW applies it.
+  if (!decayed_.empty()) {
+    const float keep = 1.0f - a.lr * static_cast<float>(train_.weight_decay);
+    for (const ParamRange& r : decayed_) {
+      float* w = params_.data() + r.offset;
+      for (int64_t i = 0; i < r.size; ++i) w[i] *= keep;
+    }
+  }
   a.beta1 = kBeta1;
   a.beta2 = kBeta2;
   a.eps = kAdamEps;

@@ -96,6 +96,7 @@ class TrainerImpl {
   Rng augment_rng_{0};
   StepMetrics last_;
   AlignedFloats params_, grads_, exp_avg_, exp_avg_sq_;
+  std::vector<ParamRange> decayed_;  ///< TrainConfig::weight_decay's weights; empty without it
 
   // Per-step scratch, allocated once.
   ModelBuffers demo_, play_, eval_;

@@ -83,12 +83,12 @@ std::vector<OptionCase> NumericOptions() {
     for (const char* option :
          {"--demos", "--runs", "--tests", "--jobs", "--steps", "--baseline-steps", "--batch",
           "--play", "--feature-dim", "--random-shift", "--random-erase", "--action-chunk",
-          "--beacon-filter", "--seed"}) {
+          "--beacon-filter", "--seed", "--policy-ensemble"}) {
       cases.push_back({exp, option, true});
     }
     for (const char* option :
          {"--lr", "--beacon-weight", "--play-weight", "--feature-noise", "--feature-gate",
-          "--play-consistency", "--nll-min-std", "--gripper-min-std"}) {
+          "--play-consistency", "--nll-min-std", "--gripper-min-std", "--weight-decay"}) {
       cases.push_back({exp, option, false});
     }
   }

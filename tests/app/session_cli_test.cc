@@ -2,6 +2,9 @@
 // through the real `recon` binary as a teacher would: exit codes, JSON output and the files left
 // in the session folder.
 
+#include <map>
+#include <string>
+
 #include "tests/app/session_cli_fixture.h"
 
 namespace {
@@ -324,6 +327,36 @@ TEST_F(SessionCliTest, TrainEvalAndReport) {
     if (entry.path().extension() == ".png" && entry.file_size() > 0) ++pngs;
   }
   EXPECT_GT(pngs, 0);
+}
+
+// The methods train side by side; each model is the one it would be trained alone.
+TEST_F(SessionCliTest, MethodsTrainedTogetherAreTheModelsTrainedAlone) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world dynamic2d --seed 4 --demos 4 --play 20");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string train = "train --session " + session.string() + " --steps 150 --methods ";
+
+  r = RunRecon(train + "baseline,baseline");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--methods: baseline is named twice"));
+  EXPECT_FALSE(fs::exists(session / "checkpoints"));
+
+  r = RunRecon(train + "baseline,recon");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("wrote " + session.string() + "/checkpoints/baseline.ckpt"));
+  EXPECT_THAT(r.output, HasSubstr("wrote " + session.string() + "/checkpoints/recon.ckpt"));
+  std::map<std::string, std::string> together;
+  for (const char* method : {"baseline", "recon"}) {
+    together[method] = ReadJson(session / "training" / (std::string(method) + ".json"))["model_id"];
+  }
+  EXPECT_NE(together["baseline"], together["recon"]);
+  for (const char* method : {"recon", "baseline"}) {
+    SCOPED_TRACE(method);
+    r = RunRecon(train + method);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(ReadJson(session / "training" / (std::string(method) + ".json"))["model_id"],
+              together[method]);
+  }
 }
 
 // A simulated arm cell: calibrated on creation, or with a given calibration, or none.
