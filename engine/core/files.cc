@@ -4,7 +4,9 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -135,7 +137,12 @@ void EnsureWritableDirectory(const std::string& dir) {
   fs::create_directories(dir, ec);
   if (ec) throw UserError("cannot create output folder " + dir + ": " + ec.message());
   if (!fs::is_directory(dir)) throw UserError("output path " + dir + " is not a folder");
-  const std::string probe = (fs::path(dir) / (".write-test." + std::to_string(getpid()))).string();
+  // One name per call: threads of one process (methods training side by side) probe the same
+  // folder at once, and O_EXCL would fail the second with "File exists".
+  static std::atomic<uint64_t> probes{0};
+  const std::string probe = (fs::path(dir) / (".write-test." + std::to_string(getpid()) + "." +
+                                              std::to_string(probes.fetch_add(1))))
+                                .string();
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
     throw UserError("output folder " + dir + " is not writable: " + std::strerror(errno));

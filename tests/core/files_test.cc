@@ -1,4 +1,5 @@
-// Temporaries of killed writers: recognised by the writer's PID, removed only once it is dead.
+// Temporaries of killed writers: recognised by the writer's PID, removed only once it is dead;
+// and the check that an output folder is writable, from several threads at once.
 
 #include "engine/core/files.h"
 
@@ -9,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace recon {
 namespace {
@@ -87,6 +90,29 @@ TEST(FilesTest, StagingFoldersOfDeadImportsAreRemovedWithTheirContents) {
   EXPECT_TRUE(IsTemporaryOfDeadWriter("copy.importing." + dead, ".importing."));
   EXPECT_FALSE(IsTemporaryOfDeadWriter("copy.importing." + dead));  // not a ".tmp." file
   fs::remove_all(dir);
+}
+
+TEST(FilesTest, ThreadsCheckTheSameOutputFolderAtOnce) {
+  // Methods trained side by side each make sure training/ is writable, at the same moment.
+  const fs::path dir = Scratch() / "training";
+  constexpr int kThreads = 8, kRounds = 200;
+  std::vector<int> failures(kThreads, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int i = 0; i < kRounds; ++i) {
+        try {
+          EnsureWritableDirectory(dir.string());
+        } catch (const std::exception&) {
+          ++failures[t];
+        }
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (int t = 0; t < kThreads; ++t) EXPECT_EQ(failures[t], 0) << "thread " << t;
+  EXPECT_TRUE(fs::is_empty(dir)) << "a write probe was left behind";
+  fs::remove_all(dir.parent_path());
 }
 
 }  // namespace
