@@ -175,6 +175,13 @@ std::vector<ParamRange> WeightRanges(const Architecture& arch) {
   return ranges;
 }
 
+void ScaleRanges(const std::vector<ParamRange>& ranges, float factor, float* params) {
+  for (const ParamRange& r : ranges) {
+    float* p = params + r.offset;
+    for (int64_t i = 0; i < r.size; ++i) p[i] *= factor;
+  }
+}
+
 void InitializeParameters(const Architecture& arch, Rng& rng, float* params) {
   for (const ConvLayer& conv : arch.convs) {
     const int fan_in = conv.in_channels * conv.kernel * conv.kernel;

@@ -84,6 +84,9 @@ struct ParamRange {
 /// convolution's kernel, in buffer order; biases and the spatial softmax's temperature are not.
 std::vector<ParamRange> WeightRanges(const Architecture& arch);
 
+/// Multiplies every parameter in `ranges` by `factor` (weight decay's shrink).
+void ScaleRanges(const std::vector<ParamRange>& ranges, float factor, float* params);
+
 /// The authors' initialisation: Xavier-uniform weights and zero biases for linear layers,
 /// PyTorch's default for convolutions (kaiming-uniform with a = sqrt(5), i.e. U(+-1/sqrt(fan_in))
 /// for weights and biases). All draws come from `rng`, so a seed fixes the model. The spatial

@@ -1,7 +1,8 @@
+#include "engine/learn/policy.h"
+
 #include <algorithm>
 
 #include "engine/core/error.h"
-#include "engine/learn/learner.h"
 #include "engine/learn/policy_impl.h"
 
 namespace recon::learn {
@@ -112,6 +113,36 @@ PolicyImpl& Require(const std::shared_ptr<PolicyImpl>& impl) {
   return *impl;
 }
 
+// One kind of output of `first` and the ensemble's `others`, averaged row by row (gates too).
+std::vector<std::vector<float>> RunAveraged(const std::shared_ptr<PolicyImpl>& first,
+                                            const std::vector<std::shared_ptr<PolicyImpl>>& others,
+                                            PolicyImpl::Output kind,
+                                            const std::vector<std::vector<float>>& xs,
+                                            const std::vector<std::vector<float>>& ys,
+                                            std::vector<float>* gates = nullptr) {
+  std::vector<std::vector<float>> sum = Require(first).Run(kind, xs, ys, gates);
+  if (others.empty()) return sum;
+  std::vector<float> member_gates;
+  for (const std::shared_ptr<PolicyImpl>& member : others) {
+    const std::vector<std::vector<float>> rows =
+        member->Run(kind, xs, ys, gates != nullptr ? &member_gates : nullptr);
+    for (size_t r = 0; r < sum.size(); ++r) {
+      for (size_t j = 0; j < sum[r].size(); ++j) sum[r][j] += rows[r][j];
+    }
+    if (gates != nullptr) {
+      for (size_t r = 0; r < gates->size(); ++r) (*gates)[r] += member_gates[r];
+    }
+  }
+  const float scale = 1.0f / static_cast<float>(1 + others.size());
+  for (std::vector<float>& row : sum) {
+    for (float& v : row) v *= scale;
+  }
+  if (gates != nullptr) {
+    for (float& g : *gates) g *= scale;
+  }
+  return sum;
+}
+
 }  // namespace
 
 Policy Policy::Ensemble(const std::vector<Policy>& members) {
@@ -135,44 +166,16 @@ Policy Policy::Ensemble(const std::vector<Policy>& members) {
 
 int Policy::ensemble_size() const { return 1 + static_cast<int>(others_.size()); }
 
-std::vector<std::vector<float>> Policy::RunAveraged(int output,
-                                                    const std::vector<std::vector<float>>& xs,
-                                                    const std::vector<std::vector<float>>& ys,
-                                                    std::vector<float>* gates) const {
-  const auto kind = static_cast<PolicyImpl::Output>(output);
-  std::vector<std::vector<float>> sum = Require(impl_).Run(kind, xs, ys, gates);
-  if (others_.empty()) return sum;
-  std::vector<float> member_gates;
-  for (const std::shared_ptr<PolicyImpl>& member : others_) {
-    const std::vector<std::vector<float>> rows =
-        member->Run(kind, xs, ys, gates != nullptr ? &member_gates : nullptr);
-    for (size_t r = 0; r < sum.size(); ++r) {
-      for (size_t j = 0; j < sum[r].size(); ++j) sum[r][j] += rows[r][j];
-    }
-    if (gates != nullptr) {
-      for (size_t r = 0; r < gates->size(); ++r) (*gates)[r] += member_gates[r];
-    }
-  }
-  const float scale = 1.0f / static_cast<float>(ensemble_size());
-  for (std::vector<float>& row : sum) {
-    for (float& v : row) v *= scale;
-  }
-  if (gates != nullptr) {
-    for (float& g : *gates) g *= scale;
-  }
-  return sum;
-}
-
 const DataSpec& Policy::spec() const { return Require(impl_).arch().spec; }
 
 std::vector<float> Policy::Act(const std::vector<float>& x, const std::vector<float>& y) const {
-  return RunAveraged(static_cast<int>(PolicyImpl::Output::kAction), {x}, {y}, nullptr).front();
+  return RunAveraged(impl_, others_, PolicyImpl::Output::kAction, {x}, {y}).front();
 }
 
 std::vector<std::vector<float>> Policy::ActBatch(const std::vector<std::vector<float>>& xs,
                                                  const std::vector<std::vector<float>>& ys,
                                                  std::vector<float>* gates) const {
-  return RunAveraged(static_cast<int>(PolicyImpl::Output::kAction), xs, ys, gates);
+  return RunAveraged(impl_, others_, PolicyImpl::Output::kAction, xs, ys, gates);
 }
 
 int Policy::action_chunk() const { return Require(impl_).arch().network.action_chunk; }
@@ -184,15 +187,13 @@ const std::vector<int>& Policy::ensembled_actions() const {
 std::vector<std::vector<float>> Policy::ActChunkBatch(const std::vector<std::vector<float>>& xs,
                                                       const std::vector<std::vector<float>>& ys,
                                                       std::vector<float>* gates) const {
-  return RunAveraged(static_cast<int>(PolicyImpl::Output::kActionChunk), xs, ys, gates);
+  return RunAveraged(impl_, others_, PolicyImpl::Output::kActionChunk, xs, ys, gates);
 }
 
 bool Policy::has_feature_gate() const { return Require(impl_).arch().has_gate(); }
 
 float Policy::FeatureGate(const std::vector<float>& x, const std::vector<float>& y) const {
-  return RunAveraged(static_cast<int>(PolicyImpl::Output::kGate), {x}, {y}, nullptr)
-      .front()
-      .front();
+  return RunAveraged(impl_, others_, PolicyImpl::Output::kGate, {x}, {y}).front().front();
 }
 
 std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
@@ -17,6 +18,14 @@ void CheckWeight(double weight, const char* name) {
     std::ostringstream msg;
     msg << "train config: " << name << " must be finite and >= 0 (got " << weight << ")";
     throw UserError(msg.str());
+  }
+}
+
+// A setting that must be a finite number in [0, max]; `unit` follows max in the message.
+void CheckBetweenZeroAnd(double value, double max, const std::string& name, const char* unit = "") {
+  if (!std::isfinite(value) || value < 0 || value > max) {
+    throw UserError("train config: " + name + " must be between 0 and " + FormatNumber(max) + unit +
+                    " (got " + FormatNumber(value) + ")");
   }
 }
 
@@ -54,40 +63,17 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                     std::to_string(kMaxRandomErasePx) + " pixels (got " +
                     std::to_string(train.random_erase_px) + ")");
   }
-  if (!std::isfinite(train.gate_margin) || train.gate_margin < 0 ||
-      train.gate_margin > kMaxGateMargin) {
-    throw UserError("train config: gate_margin must be between 0 and " +
-                    FormatNumber(kMaxGateMargin) + " (got " + FormatNumber(train.gate_margin) +
-                    ")");
-  }
-  if (!std::isfinite(train.weight_decay) || train.weight_decay < 0 ||
-      train.weight_decay > kMaxWeightDecay) {
-    throw UserError("train config: weight_decay must be between 0 and " +
-                    FormatNumber(kMaxWeightDecay) + " (got " + FormatNumber(train.weight_decay) +
-                    ")");
-  }
-  if (!std::isfinite(train.feature_noise) || train.feature_noise < 0 ||
-      train.feature_noise > kMaxFeatureNoise) {
-    throw UserError("train config: feature_noise must be between 0 and " +
-                    FormatNumber(kMaxFeatureNoise) + " standard deviations (got " +
-                    FormatNumber(train.feature_noise) + ")");
-  }
+  CheckBetweenZeroAnd(train.gate_margin, kMaxGateMargin, "gate_margin");
+  CheckBetweenZeroAnd(train.weight_decay, kMaxWeightDecay, "weight_decay");
+  CheckBetweenZeroAnd(train.feature_noise, kMaxFeatureNoise, "feature_noise",
+                      " standard deviations");
   if (train.beacon_filter_samples < 0 || train.beacon_filter_samples > kMaxBeaconFilterSamples) {
     throw UserError("train config: beacon_filter_samples must be between 0 and " +
                     std::to_string(kMaxBeaconFilterSamples) + " (got " +
                     std::to_string(train.beacon_filter_samples) + ")");
   }
-  if (!std::isfinite(train.play_consistency) || train.play_consistency < 0 ||
-      train.play_consistency > kMaxPlayConsistency) {
-    throw UserError("train config: play_consistency must be between 0 and " +
-                    FormatNumber(kMaxPlayConsistency) + " (got " +
-                    FormatNumber(train.play_consistency) + ")");
-  }
-  if (!std::isfinite(train.nll_min_std) || train.nll_min_std < 0 ||
-      train.nll_min_std > kMaxNllMinStd) {
-    throw UserError("train config: nll_min_std must be between 0 and " +
-                    FormatNumber(kMaxNllMinStd) + " (got " + FormatNumber(train.nll_min_std) + ")");
-  }
+  CheckBetweenZeroAnd(train.play_consistency, kMaxPlayConsistency, "play_consistency");
+  CheckBetweenZeroAnd(train.nll_min_std, kMaxNllMinStd, "nll_min_std");
   if (!train.action_min_std.empty()) {
     if (static_cast<int>(train.action_min_std.size()) != data.spec.u_dim) {
       throw UserError("train config: action_min_std has " +
@@ -96,12 +82,8 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
                       " (one per action, or none)");
     }
     for (size_t a = 0; a < train.action_min_std.size(); ++a) {
-      const double v = train.action_min_std[a];
-      if (!std::isfinite(v) || v < 0 || v > kMaxNllMinStd) {
-        throw UserError("train config: action_min_std[" + std::to_string(a) +
-                        "] must be between 0 and " + FormatNumber(kMaxNllMinStd) + " (got " +
-                        FormatNumber(v) + ")");
-      }
+      CheckBetweenZeroAnd(train.action_min_std[a], kMaxNllMinStd,
+                          "action_min_std[" + std::to_string(a) + "]");
     }
   }
   ValidateDataset(data, "training data");

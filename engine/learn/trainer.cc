@@ -240,13 +240,7 @@ void TrainerImpl::Step() {
   a.lr = static_cast<float>(
       ScheduledLearningRate(train_.learning_rate, train_.lr_schedule, step_, train_.steps));
   // Decoupled weight decay comes first, as PyTorch's AdamW applies it.
-  if (!decayed_.empty()) {
-    const float keep = 1.0f - a.lr * static_cast<float>(train_.weight_decay);
-    for (const ParamRange& r : decayed_) {
-      float* w = params_.data() + r.offset;
-      for (int64_t i = 0; i < r.size; ++i) w[i] *= keep;
-    }
-  }
+  ScaleRanges(decayed_, 1.0f - a.lr * static_cast<float>(train_.weight_decay), params_.data());
   a.beta1 = kBeta1;
   a.beta2 = kBeta2;
   a.eps = kAdamEps;

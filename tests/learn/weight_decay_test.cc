@@ -63,7 +63,9 @@ TEST(WeightDecayTest, TheRangesAreEveryWeightOnceAndNoBiasOrTemperature) {
         for (int i = 0; i < l.out; ++i) EXPECT_EQ(mask[l.bias + i], 0);
       }
     }
-    if (arch.spatial_softmax) EXPECT_EQ(mask[arch.keypoints.log_temperature], 0);
+    if (arch.spatial_softmax) {
+      EXPECT_EQ(mask[arch.keypoints.log_temperature], 0);
+    }
     int64_t covered = 0;
     for (int m : mask) {
       EXPECT_LE(m, 1);  // no weight twice
