@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
 #include "devices/teleop/cartesian_velocity.h"
 #include "engine/calib/calibration.h"
@@ -24,6 +25,16 @@ void RealCellSource::DescribeInto(store::SessionManifest& m) const {
   m.devices.push_back({"teleop", "keyboard or gamepad", "a person, through the studio"});
 }
 
+std::unique_ptr<worlds::World> RealCellSource::MakeNewWorld(const teach::SessionSetup& setup) {
+  return MakeWorld(cli::WorldManifest(setup), "");
+}
+
+std::unique_ptr<worlds::World> RealCellSource::MakeSessionWorld(const store::Session& session) {
+  const store::SessionManifest& m = session.manifest();
+  return MakeWorld(
+      m, m.calibration_file.empty() ? "" : (fs::path(session.dir()) / m.calibration_file).string());
+}
+
 std::unique_ptr<worlds::World> RealCellSource::MakeWorld(const store::SessionManifest& manifest,
                                                          const std::string& calibration_path) {
   cell::RealCellWorldOptions options;
@@ -41,9 +52,11 @@ Eigen::Vector3d RealCellSource::GripPoint() const {
   return arm->envelope().ToolPoint(arm->State().position_rad);
 }
 
-void RealCellSource::ShowLive(const store::SessionManifest& manifest,
-                              const std::vector<float>& reading, bool reading_in_table,
-                              ui::StudioSnapshot& s) const {
+bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
+                              const std::vector<float>& reading, bool, ViewSize,
+                              ui::StudioSnapshot& s) {
+  const store::SessionManifest& manifest = session.manifest();
+  const bool reading_in_table = !manifest.calibration_file.empty();
   const std::shared_ptr<const devices::CameraFrame> frame = cell_->LatestFrame();
   if (frame) {
     s.camera = frame->image;
@@ -67,12 +80,17 @@ void RealCellSource::ShowLive(const store::SessionManifest& manifest,
     s.beacons.push_back(view);
   }
   if (cell_->arm() != nullptr) {
-    const Eigen::Vector3d grip = GripPoint();
-    s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
-                static_cast<float>(grip.z())};
-    if (auto px = pixel(grip)) s.grip_pixel = *px;
-    s.gripper_closed = cell_->arm()->State().gripper_opening < 0.5;
+    if (auto px = pixel(GripPoint())) s.grip_pixel = *px;
   }
+  return true;
+}
+
+void RealCellSource::ShowArm(const worlds::World&, ui::StudioSnapshot& s) const {
+  if (cell_->arm() == nullptr) return;
+  const Eigen::Vector3d grip = GripPoint();
+  s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
+              static_cast<float>(grip.z())};
+  s.gripper_closed = cell_->arm()->State().gripper_opening < 0.5;
 }
 
 void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {
@@ -89,7 +107,7 @@ void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {
   s.devices = std::move(rows);
 }
 
-void RealCellSource::ShowSafety(ui::SafetyView& view) const {
+void RealCellSource::ShowSafety(const worlds::World*, ui::SafetyView& view) const {
   const safety::GuardedArm* arm = cell_->arm();
   if (arm == nullptr) return;
   const safety::SafetyStats stats = arm->stats();
@@ -101,8 +119,8 @@ void RealCellSource::ShowSafety(ui::SafetyView& view) const {
   view.changed = stats.changed;
 }
 
-Eigen::Vector3d RealCellSource::TeleopVelocity(const ui::TeleopInput& input,
-                                               double speed_m_s) const {
+Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
+                                               ViewSize, double speed_m_s) const {
   if (cell_->camera_pose() && cell_->arm() != nullptr) {
     return studio::TeleopVelocity(cell_->camera_pose()->camera, GripPoint(), input, speed_m_s);
   }
@@ -112,7 +130,7 @@ Eigen::Vector3d RealCellSource::TeleopVelocity(const ui::TeleopInput& input,
   return velocity * speed_m_s;
 }
 
-teach::Teacher RealCellSource::Teacher(const teach::TeleopCommand* command) {
+teach::Teacher RealCellSource::PersonTeacher(worlds::World&, const teach::TeleopCommand* command) {
   safety::GuardedArm* arm = cell_->arm();
   if (arm == nullptr) throw UserError(cell_->profile().path + ": the profile names no robot");
   return [arm, command](const worlds::World&) {
@@ -139,13 +157,29 @@ void RealCellSource::EmergencyStop(bool engage, const std::string& reason) {
   }
 }
 
-std::vector<float> RealCellSource::RawBeaconReading() {
+std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::World& world,
+                                                                    const store::Session& session) {
+  // Calibrated, the world maps the beacon to the table; before, show that it reports, in its
+  // own (UWB) frame.
+  if (!session.manifest().calibration_file.empty()) return world.BeaconReading();
   std::vector<float> reading;
   for (const devices::BeaconSample& sample : cell_->beacons().Poll()) {
     reading = {static_cast<float>(sample.position_uwb_m.x()),
                static_cast<float>(sample.position_uwb_m.y())};
   }
+  if (reading.empty()) return std::nullopt;
   return reading;
+}
+
+std::string RealCellSource::CannotCalibrate() const {
+  return "the Calibrate step runs the simulated cell's calibration only, for now: calibrate a "
+         "real cell with 'recon calibrate --camera ... --out cal.json' and start the studio with "
+         "--calibration cal.json";
+}
+
+std::string RealCellSource::CannotRollOut() const {
+  return "rollouts on a real arm are not run from the studio yet: the policies are trained; roll "
+         "them out in the simulated cell's sessions";
 }
 
 }  // namespace recon::studio

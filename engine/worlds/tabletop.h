@@ -127,6 +127,7 @@ class Tabletop : public World {
   double ToastToBowlDistance() const;
   MujocoModel& scene() { return scene_; }
   Ur5Arm& arm() { return *arm_; }
+  const Ur5Arm& arm() const { return *arm_; }
 
   /// What the safety envelope did to this world's commands since it was made.
   const safety::SafetyStats& safety_stats() const { return safety_.stats(); }

@@ -1,0 +1,91 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/store/session.h"
+#include "engine/teach/cartesian_teleop.h"
+#include "engine/teach/recorder.h"
+#include "engine/teach/session_setup.h"
+#include "engine/worlds/world.h"
+#include "ui/studio/studio_snapshot.h"
+
+namespace recon::studio {
+
+/// The live view's size in pixels (the Record screen's camera, where teleop input is given).
+struct ViewSize {
+  int width = 320;
+  int height = 240;
+};
+
+/// Where the studio's cell comes from: the simulated tabletop (a MuJoCo world with its own
+/// camera, beacons and scripted teacher) or a real cell's devices (camera, beacons, UR5). The
+/// studio's controller talks to the cell only through this, so every screen and command has one
+/// code path for both; what differs lives in the two implementations. Cell thread only, except
+/// EmergencyStop.
+class CellSource {
+ public:
+  virtual ~CellSource() = default;
+
+  /// The manifest's `cell` of the sessions this source teaches: "simulated" or "real".
+  virtual std::string Kind() const = 0;
+
+  /// A new session's defaults where the teacher gave none: the beacons' noise (simulated
+  /// beacons carry a DWM1001's, real ones bring their own) and the demonstration noise (a real
+  /// arm is only perturbed when asked).
+  virtual double DefaultBeaconNoise(const std::string& world) const = 0;
+  virtual double DefaultDemoNoise(const std::string& world) const = 0;
+  /// The world of a new session made from `setup`, and what its manifest records of the cell.
+  virtual std::unique_ptr<worlds::World> MakeNewWorld(const teach::SessionSetup& setup) = 0;
+  virtual void DescribeInto(store::SessionManifest& manifest) const = 0;
+  /// The world of an opened session (with its calibration, where the cell needs one).
+  virtual std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) = 0;
+
+  /// Whether the scripted teacher can demonstrate here (the simulated cell only).
+  virtual bool HasScriptedTeacher() const = 0;
+  /// A person's teacher: `*command`'s grip velocity as the arm's joint velocities.
+  virtual teach::Teacher PersonTeacher(worlds::World& world,
+                                       const teach::TeleopCommand* command) = 0;
+  /// The grip point's table velocity for a teleop input given on the live view, `speed_m_s` at
+  /// full deflection: the arrows move the arm the way the teacher sees it move on screen.
+  virtual Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input,
+                                         ViewSize view, double speed_m_s) const = 0;
+  /// How play samples record who moved the objects ("simulated-play", "person-play").
+  virtual std::string PlaySource() const = 0;
+
+  /// The plate beacon's reading while nothing records (the Beacons screen's live value): in the
+  /// table frame once the session is calibrated, in the beacons' own frame before (a real cell
+  /// cannot map it yet). Nothing when no new reading arrived: the last one stands.
+  virtual std::optional<std::vector<float>> IdleBeaconReading(worlds::World& world,
+                                                              const store::Session& session) = 0;
+
+  /// Fills the live camera, the objects one can assign a beacon to and the beacons drawn where
+  /// `reading` puts them. `wanted` says whether a screen showing the camera is open (the
+  /// simulated cell renders only then, so training gets the CPU). True when a frame was shown;
+  /// its number (s.camera_frame) grows with every new frame.
+  virtual bool ShowLive(worlds::World& world, const store::Session& session,
+                        const std::vector<float>& reading, bool wanted, ViewSize view,
+                        ui::StudioSnapshot& s) = 0;
+  /// The grip point and the gripper, for the readout.
+  virtual void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const = 0;
+  /// The cell's device rows (a real cell's live status); the simulated cell's come from the
+  /// session's manifest.
+  virtual void ShowDevices(ui::StudioSnapshot& s) const = 0;
+  /// The envelope the arm's commands pass and what it changed so far (`world`: the session's,
+  /// null before one is open). `estop` and its reason are the studio's; a real arm's own latch
+  /// overrides them.
+  virtual void ShowSafety(const worlds::World* world, ui::SafetyView& view) const = 0;
+  /// Engages or releases the arm's e-stop (the simulated arm moves only while the studio steps
+  /// it, so the studio's own latch is enough there).
+  virtual void EmergencyStop(bool engage, const std::string& reason) = 0;
+
+  /// Empty when the Calibrate step can run here; otherwise what to do instead.
+  virtual std::string CannotCalibrate() const = 0;
+  /// Empty when the Rollouts step can run here; otherwise why not.
+  virtual std::string CannotRollOut() const = 0;
+};
+
+}  // namespace recon::studio

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/studio/cell_source.h"
+#include "engine/worlds/scene_renderer.h"
+#include "engine/worlds/tabletop.h"
+
+namespace recon::studio {
+
+/// The simulated tabletop cell (the studio's default): the MuJoCo world draws its own camera
+/// view, its beacons read where the world puts them (with the session's noise), the scripted
+/// teacher can demonstrate, and a person's teleop drives the arm through the world's IK.
+class SimulatedCellSource final : public CellSource {
+ public:
+  /// `renderer` draws the live view (made on the cell thread, which owns its GL context); it
+  /// must outlive the source.
+  explicit SimulatedCellSource(worlds::SceneRenderer& renderer);
+
+  std::string Kind() const override { return "simulated"; }
+  double DefaultBeaconNoise(const std::string& world) const override;
+  double DefaultDemoNoise(const std::string& world) const override;
+  std::unique_ptr<worlds::World> MakeNewWorld(const teach::SessionSetup& setup) override;
+  void DescribeInto(store::SessionManifest&) const override {}
+  std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) override;
+
+  bool HasScriptedTeacher() const override { return true; }
+  teach::Teacher PersonTeacher(worlds::World& world, const teach::TeleopCommand* command) override;
+  Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
+                                 double speed_m_s) const override;
+  std::string PlaySource() const override { return "simulated-play"; }
+
+  std::optional<std::vector<float>> IdleBeaconReading(worlds::World& world,
+                                                      const store::Session& session) override;
+  bool ShowLive(worlds::World& world, const store::Session& session,
+                const std::vector<float>& reading, bool wanted, ViewSize view,
+                ui::StudioSnapshot& s) override;
+  void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const override;
+  void ShowDevices(ui::StudioSnapshot&) const override {}
+  void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
+  void EmergencyStop(bool, const std::string&) override {}
+
+  std::string CannotCalibrate() const override { return ""; }
+  std::string CannotRollOut() const override { return ""; }
+
+ private:
+  worlds::SceneRenderer& renderer_;
+  uint64_t frames_ = 0;  ///< frames rendered so far
+};
+
+}  // namespace recon::studio

@@ -1,0 +1,282 @@
+#include "app/studio/studio_cell.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "app/studio/real_cell_source.h"
+#include "app/studio/simulated_cell_source.h"
+#include "devices/render/mujoco_renderer.h"
+#include "engine/core/error.h"
+#include "engine/teach/session_setup.h"
+#include "engine/worlds/world_factory.h"
+
+namespace recon::studio {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+discovery::DiscoveryOptions ScanOptions(const StudioOptions& options) {
+  discovery::DiscoveryOptions scan;
+  scan.dev_dir = options.dev_dir;
+  scan.robot_hosts = options.robot_hosts;
+  return scan;
+}
+
+}  // namespace
+
+StudioCell::StudioCell(const StudioOptions& options)
+    : options_(options),
+      recent_(options.recent_sessions_file.empty() ? RecentSessions::DefaultPath()
+                                                   : options.recent_sessions_file),
+      gamepad_(options.gamepad_paths),
+      scanner_(ScanOptions(options), std::chrono::milliseconds(options.device_scan_ms)) {
+  if (!recent_.problem().empty()) AddError(recent_.problem());
+}
+
+StudioCell::~StudioCell() = default;
+
+void StudioCell::Start() {
+  renderer_ = render::MujocoRendererFactory()();
+  if (options_.cell_profile.empty()) {
+    source_ = std::make_unique<SimulatedCellSource>(*renderer_);
+  } else {
+    source_ = std::make_unique<RealCellSource>(options_.cell_profile);
+  }
+  if (!source_->HasScriptedTeacher()) teleop_mode_ = "keyboard";
+  if (options_.session_dir.empty()) {
+    picking_session_ = true;
+    status_ = "Open a session, or create one in a new folder.";
+    return;
+  }
+  OpenSessionAt(options_.session_dir);
+}
+
+void StudioCell::OpenSessionAt(const std::string& dir) {
+  const bool exists = store::Session::Exists(dir);
+  std::optional<store::SessionManifest> existing;
+  if (exists) existing = store::LoadManifest((fs::path(dir) / "session.json").string());
+  const std::string world = exists ? existing->world : options_.world;
+  // The steps (a camera to click objects in, a UWB frame to calibrate) are the arm cell's.
+  if (world != "tabletop") {
+    throw UserError("the studio teaches in the tabletop cell; a " + world +
+                    " session is recorded and trained from the command line (recon record, "
+                    "recon train)");
+  }
+  if (exists && existing->cell != source_->Kind()) {
+    throw UserError(dir + " was taught in " +
+                    (existing->cell == "real" ? "a real cell: open it with --cell PROFILE"
+                                              : "the simulated cell: open it without --cell"));
+  }
+  if (session_ && fs::equivalent(session_->dir(), dir)) {
+    picking_session_ = false;
+    return;
+  }
+  std::optional<store::Session> opened;
+  std::unique_ptr<worlds::World> made;
+  if (exists) {
+    opened.emplace(store::Session::Open(dir));
+    if (!options_.calibration_file.empty()) opened->AttachCalibration(options_.calibration_file);
+    made = source_->MakeSessionWorld(*opened);
+  } else {
+    teach::SessionSetup setup;
+    setup.world_name = options_.world;
+    setup.placement = teach::DefaultTeachingPlacement(options_.world);
+    setup.image_size = options_.image_size;
+    setup.seed = options_.seed;
+    setup.beacon_noise_sigma =
+        options_.beacon_noise_sigma.value_or(source_->DefaultBeaconNoise(options_.world));
+    const std::vector<std::string> layouts = worlds::WorldLayouts(options_.world);
+    setup.layout = layouts.empty() ? "" : options_.layout;
+    setup.demo_noise_sigma =
+        options_.demo_noise_sigma.value_or(source_->DefaultDemoNoise(options_.world));
+    made = source_->MakeNewWorld(setup);
+    store::SessionManifest manifest = teach::NewSessionManifest(setup, *made);
+    source_->DescribeInto(manifest);
+    opened.emplace(store::Session::Create(dir, manifest));
+    if (!options_.calibration_file.empty()) {
+      opened->AttachCalibration(options_.calibration_file);
+      made = source_->MakeSessionWorld(*opened);  // with the calibration's UWB -> table transform
+    }
+  }
+  // The new session is good: drop everything that belonged to the old one.
+  recorder_.reset();
+  play_.reset();
+  replace_.reset();
+  last_training_.clear();
+  report_path_.clear();
+  world_ = std::move(made);
+  session_ = std::move(opened);
+  ResetToNextScene();
+  picking_session_ = false;
+  current_step_ = teach::Step::kCell;
+  playback_ = std::make_unique<RolloutPlayback>(session_->manifest(), session_->dir());
+  ReloadPlayback();
+  Changed();
+  if (std::string problem = recent_.Add(session_->dir()); !problem.empty()) AddError(problem);
+  status_ = std::string(exists ? "Opened" : "Created") + " session " + session_->dir() + ": " +
+            session_->manifest().world + ", " + session_->manifest().cell + " cell.";
+}
+
+void StudioCell::Handle(const ui::StudioCommand& command) {
+  Changed();  // whatever it does (or fails to do), the workflow is re-read
+  const bool needs_session = !std::holds_alternative<ui::OpenSession>(command) &&
+                             !std::holds_alternative<ui::ShowSessionPicker>(command) &&
+                             !std::holds_alternative<ui::DismissErrors>(command) &&
+                             !std::holds_alternative<ui::EmergencyStop>(command) &&
+                             !std::holds_alternative<ui::RescanDevices>(command);
+  if (needs_session && !session_) throw UserError("open or create a session first");
+  std::visit([this](const auto& c) { Apply(c); }, command);
+}
+
+void StudioCell::Tick() {
+  const Clock::time_point now = Clock::now();
+  PollGamepad(now);
+  if (recorder_ && recorder_->recording()) {
+    // A person teleoperating needs the real control rate, whatever --fast says.
+    const bool paced = options_.real_time || teleop_mode_ != "scripted";
+    if (!paced || now >= next_tick_) {
+      next_tick_ = now + kControlPeriod;
+      recorder_->Tick();
+      arm_health_.Add(Seconds(now));
+      if (const Sample* last = recorder_->last()) last_reading_ = last->b;
+      beacon_health_.Add(Seconds(now), last_reading_);
+      if (!recorder_->recording()) Commit();
+    }
+  } else if (play_ && play_->recording()) {
+    if (!options_.real_time || now >= next_tick_) {
+      next_tick_ = now + kControlPeriod;
+      play_->Tick();
+      ShowPlaySample();
+      if (!play_->recording()) CommitPlayChunk();
+    }
+  } else if (world_ && now >= next_beacon_) {
+    // The beacons report at 10 Hz. Only read here when nothing records: a simulated reading
+    // draws beacon noise from the world's generator, which a recording must have to itself so
+    // that its scenario seed reproduces it exactly.
+    next_beacon_ = now + kControlPeriod;
+    if (auto reading = source_->IdleBeaconReading(*world_, *session_)) last_reading_ = *reading;
+    beacon_health_.Add(Seconds(now), last_reading_);
+  }
+  if (playback_) playback_->Tick(now);
+  ApplyFinishedJob();
+}
+
+bool StudioCell::Busy() const {
+  return (recorder_ && recorder_->recording()) || (play_ && play_->recording()) || jobs_.Running();
+}
+
+void StudioCell::AddError(const std::string& error) {
+  if (errors_.empty() || errors_.back() != error) errors_.push_back(error);
+}
+
+void StudioCell::ReloadPlayback() {
+  try {
+    playback_->Reload();
+  } catch (const UserError& e) {
+    AddError(std::string("cannot play the rollouts back: ") + e.what());
+  }
+}
+
+double StudioCell::Seconds(Clock::time_point t) const {
+  return std::chrono::duration<double>(t - started_).count();
+}
+
+void StudioCell::ApplyFinishedJob() {
+  const JobState job = jobs_.Take();
+  if (job.finish) job.finish();
+  if (!job.error.empty()) AddError(job.error);
+  if (job.finish || !job.error.empty()) Changed();
+}
+
+void StudioCell::ResetToNextScene() {
+  world_->Reset(
+      store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
+}
+
+void StudioCell::PollGamepad(Clock::time_point now) {
+  if (gamepad_.Poll(now)) {
+    Changed();
+    if (!gamepad_.connected() && teleop_mode_ == "gamepad") {
+      // The teacher's hand is gone: stop the arm where it is.
+      teleop_input_ = {};
+      teleop_command_.velocity_m_s.setZero();
+      AddError(gamepad_.error() + "; the arm holds still");
+    }
+  }
+  if (!gamepad_.connected() || teleop_mode_ != "gamepad" ||
+      !(recorder_ && recorder_->recording())) {
+    return;
+  }
+  const teleop::GamepadTeleop& pad = gamepad_.command();
+  ui::TeleopInput input;
+  input.screen_right = pad.screen_right;
+  input.screen_up = pad.screen_up;
+  input.raise = pad.raise;
+  input.close_gripper = teleop_input_.close_gripper != pad.toggle_gripper;
+  if (input != teleop_input_) Apply(input);
+  if (pad.keep) Commit();
+}
+
+teach::Teacher StudioCell::MakeTeacher() {
+  if (teleop_mode_ != "scripted") return source_->PersonTeacher(*world_, &teleop_command_);
+  if (!source_->HasScriptedTeacher()) {
+    throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
+  }
+  return teach::ScriptedTeacher;
+}
+
+std::string StudioCell::TeleopSource() const {
+  return teleop_mode_ == "scripted" ? "scripted-teleop" : teleop_mode_ + "-teleop";
+}
+
+void StudioCell::StartDemo(int number, uint64_t seed) {
+  teleop_input_ = {};
+  teleop_command_ = {};
+  recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
+  teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
+}
+
+void StudioCell::Commit() {
+  Changed();
+  const store::EpisodeEntry& e = session_->CommitDemo(recorder_->Take(), replace_);
+  status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) + " samples).";
+  replace_.reset();
+  recorder_.reset();
+  ResetToNextScene();
+}
+
+void StudioCell::StartPlayChunk() {
+  const int chunk =
+      std::min(std::max(1, world_->PlaySamplesPerScenario()), play_target_ - play_done_);
+  play_ = std::make_unique<teach::PlayRecorder>(*world_, source_->PlaySource());
+  teach::StartSessionPlay(*play_, *world_, session_->manifest().seed, session_->NextPlayNumber(),
+                          chunk);
+}
+
+void StudioCell::CommitPlayChunk() {
+  Changed();
+  const store::EpisodeEntry& e = session_->CommitPlay(play_->Take());
+  play_done_ += static_cast<int>(e.meta.num_samples);
+  status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) + " play samples, " +
+            std::to_string(play_done_) + " of " + std::to_string(play_target_) + ").";
+  if (play_done_ < play_target_) {
+    StartPlayChunk();
+  } else {
+    play_.reset();
+    ResetToNextScene();
+  }
+}
+
+void StudioCell::RequireIdle(const char* what) const {
+  if (Busy()) throw UserError(std::string("cannot ") + what + " while something else runs");
+}
+
+void StudioCell::RequireNoEmergencyStop(const char* what) const {
+  if (estop_) {
+    throw UserError(std::string("cannot ") + what + ": the e-stop is engaged (" + estop_reason_ +
+                    "); release it first");
+  }
+}
+
+}  // namespace recon::studio

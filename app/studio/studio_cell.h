@@ -1,0 +1,174 @@
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/studio/cell_source.h"
+#include "app/studio/device_scanner.h"
+#include "app/studio/gamepad_source.h"
+#include "app/studio/job_thread.h"
+#include "app/studio/recent_sessions.h"
+#include "app/studio/rollout_playback.h"
+#include "app/studio/studio_config.h"
+#include "engine/store/session.h"
+#include "engine/teach/cartesian_teleop.h"
+#include "engine/teach/play_recorder.h"
+#include "engine/teach/recorder.h"
+#include "engine/teach/stream_health.h"
+#include "engine/teach/workflow.h"
+#include "engine/worlds/scene_renderer.h"
+#include "engine/worlds/world.h"
+#include "ui/studio/studio_commands.h"
+#include "ui/studio/studio_snapshot.h"
+
+namespace recon::studio {
+
+/// Everything the studio's cell thread owns: the session, the cell (simulated or real, through
+/// CellSource), its world, the recorders, the jobs. It applies the UI's commands
+/// (studio_cell_commands.cc), runs the cell loop (studio_cell.cc) and fills snapshots
+/// (studio_cell_publish.cc). Not thread-safe: StudioController calls it from its cell thread
+/// only (GL contexts and MuJoCo data belong to the thread that made them).
+class StudioCell {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  explicit StudioCell(const StudioOptions& options);
+  ~StudioCell();
+
+  /// Opens the cell the options name (the simulated one, or the real one of --cell) and the
+  /// session, if the options name one (without, the studio starts at the session picker).
+  void Start();
+  /// Applies one command of the UI; UserError when it cannot be done now.
+  void Handle(const ui::StudioCommand& command);
+  /// One pass of the cell loop: a recording step, a play sample, the beacons, a finished job.
+  void Tick();
+  /// A recording or a job runs.
+  bool Busy() const;
+  /// Shown on screen until dismissed; the same error twice in a row is shown once.
+  void AddError(const std::string& error);
+  const std::vector<std::string>& errors() const { return errors_; }
+  /// The snapshot: the session's side (rebuilt only after something changed it), then what
+  /// moves by itself: the camera, the recording, the job's progress.
+  void Publish(ui::StudioSnapshot& s);
+
+ private:
+  static constexpr auto kControlPeriod = std::chrono::milliseconds(100);  // the arm's 10 Hz
+  static constexpr double kTeleopSpeed_m_s = 0.1;
+
+  // The session (studio_cell.cc).
+  /// Opens the session in `dir` (creating it there if the folder holds none) and makes its
+  /// world. The session open until now stays open if this fails.
+  void OpenSessionAt(const std::string& dir);
+  /// Marks the session's side of the snapshot stale: after every command, commit and job.
+  void Changed() { dirty_ = true; }
+  /// Opens the rollouts' replay files for the playback; a damaged one is reported, not fatal.
+  void ReloadPlayback();
+  double Seconds(Clock::time_point t) const;
+  void ApplyFinishedJob();
+  /// Resets the world to the scene of the next demonstration.
+  void ResetToNextScene();
+
+  // Recording (studio_cell.cc).
+  void PollGamepad(Clock::time_point now);
+  teach::Teacher MakeTeacher();
+  std::string TeleopSource() const;
+  /// Starts demonstration demo_<number> (a new one, or one being re-recorded) in its scene: a
+  /// take of its configuration where the world groups them (World::DemosPerConfiguration).
+  void StartDemo(int number, uint64_t seed);
+  void Commit();
+  /// A chunk is one scenario's worth of play, seeded as `recon record --play` seeds it.
+  void StartPlayChunk();
+  /// Commits the play chunk just recorded and starts the next one while samples remain.
+  void CommitPlayChunk();
+  void RequireIdle(const char* what) const;
+  /// For whatever moves the arm.
+  void RequireNoEmergencyStop(const char* what) const;
+
+  // The snapshot (studio_cell_publish.cc).
+  /// Everything the snapshot shows of the session and the workflow (session_view.h).
+  void RebuildSessionView();
+  /// The live camera, the objects one can click and where the beacons read.
+  void RenderView(ui::StudioSnapshot& s);
+  /// The devices' measured rates and the beacons' health, from what actually arrived lately.
+  void ShowDeviceHealth(ui::StudioSnapshot& s) const;
+  /// What is plugged in, from the scanner's latest pass.
+  void ShowConnected(ui::StudioSnapshot& s) const;
+  /// The envelope the arm's commands pass, what it changed so far, and the e-stop.
+  void ShowSafety(ui::StudioSnapshot& s) const;
+  /// The latest play sample, for the Play screen.
+  void ShowPlaySample();
+  /// The Rollouts screen's playback, drawn only while it shows.
+  void ShowPlayback(ui::StudioSnapshot& s);
+
+  // The commands (studio_cell_commands.cc).
+  void Apply(const ui::OpenStep& c);
+  void Apply(const ui::AssignBeacon& c);
+  void Apply(const ui::StartCalibration& c);
+  void Apply(const ui::CancelCalibration& c);
+  void Apply(const ui::StartRecording& c);
+  void Apply(const ui::StopRecording& c);
+  void Apply(const ui::DiscardRecording& c);
+  void Apply(const ui::DeleteEpisode& c);
+  void Apply(const ui::ReRecordEpisode& c);
+  void Apply(const ui::MarkEpisodeBad& c);
+  void Apply(const ui::RecordPlay& c);
+  void Apply(const ui::StopPlay& c);
+  void Apply(const ui::SetTeleopMode& c);
+  void Apply(const ui::TeleopInput& c);
+  void Apply(const ui::ShowSessionPicker& c);
+  void Apply(const ui::OpenSession& c);
+  void Apply(const ui::PlayRollouts& c);
+  void Apply(const ui::StartTraining& c);
+  void Apply(const ui::CancelTraining& c);
+  void Apply(const ui::RunRollouts& c);
+  void Apply(const ui::ShowRolloutFrame& c);
+  void Apply(const ui::WriteReport& c);
+  void Apply(const ui::DismissErrors& c);
+  void Apply(const ui::RescanDevices& c);
+  void Apply(const ui::EmergencyStop& c);
+
+  StudioOptions options_;
+  RecentSessions recent_;
+  bool picking_session_ = false;
+  std::optional<store::Session> session_;
+  /// Draws the simulated cell's live view and the rollouts' playback (the simulated scenes the
+  /// policies ran in). Declared before source_, which may hold it.
+  std::unique_ptr<worlds::SceneRenderer> renderer_;
+  std::unique_ptr<CellSource> source_;  ///< the simulated cell or the real one (--cell)
+  std::unique_ptr<worlds::World> world_;
+  std::unique_ptr<teach::DemoRecorder> recorder_;
+  std::optional<std::string> replace_;
+  std::string teleop_mode_ = "scripted";
+  ui::TeleopInput teleop_input_;
+  teach::TeleopCommand teleop_command_;
+  std::unique_ptr<teach::PlayRecorder> play_;
+  std::unique_ptr<RolloutPlayback> playback_;
+  GamepadSource gamepad_;
+  int play_target_ = 0, play_done_ = 0;
+  RgbImage play_image_;
+  uint64_t play_image_frame_ = 0;
+  std::vector<float> play_reading_;
+  const Clock::time_point started_ = Clock::now();
+  Clock::time_point next_tick_ = Clock::now();
+  Clock::time_point next_beacon_ = Clock::now();
+  std::vector<float> last_reading_;
+  teach::StreamHealth camera_health_{30.0};
+  teach::StreamHealth beacon_health_{10.0};
+  teach::StreamHealth arm_health_{10.0};
+  JobThread jobs_;
+  ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
+  bool dirty_ = true;
+  std::vector<ui::TrainingView> last_training_;
+  teach::Step current_step_ = teach::Step::kCell;
+  std::vector<std::string> errors_;
+  std::string status_;
+  std::string report_path_;
+  bool estop_ = false;
+  std::string estop_reason_;
+  DeviceScanner scanner_;
+};
+
+}  // namespace recon::studio

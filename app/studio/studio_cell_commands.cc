@@ -1,0 +1,216 @@
+// StudioCell's commands: what each of the UI's commands does to the session and the cell.
+
+#include <algorithm>
+#include <filesystem>
+#include <functional>
+
+#include "app/cli/session_report_builder.h"
+#include "app/cli/session_training.h"
+#include "app/studio/studio_cell.h"
+#include "app/studio/studio_jobs.h"
+#include "engine/core/error.h"
+
+namespace recon::studio {
+
+namespace fs = std::filesystem;
+
+void StudioCell::Apply(const ui::OpenStep& c) { current_step_ = c.step; }
+
+void StudioCell::Apply(const ui::AssignBeacon& c) {
+  RequireIdle("assign a beacon");
+  session_->AssignBeacon(c.beacon, c.object);
+  status_ = "Beacon " + c.beacon + " marks the " + c.object + ".";
+}
+
+void StudioCell::Apply(const ui::StartCalibration&) {
+  RequireIdle("calibrate");
+  if (std::string why = source_->CannotCalibrate(); !why.empty()) throw UserError(why);
+  const uint64_t seed = session_->manifest().seed;
+  const int points = options_.calibration_points;
+  const std::string dir = session_->dir();
+  jobs_.Start("calibration", [this, seed, points, dir](JobThread& jobs) -> std::function<void()> {
+    const std::string path = (fs::path(dir) / "calibration.new.json").string();
+    CalibrateCell(jobs, seed, points, path);
+    return [this, path] {
+      session_->AttachCalibration(path);
+      fs::remove(path);
+      status_ = "Calibrated.";
+    };
+  });
+}
+
+void StudioCell::Apply(const ui::CancelCalibration&) { jobs_.Cancel(); }
+
+void StudioCell::Apply(const ui::StartRecording&) {
+  RequireIdle("record");
+  RequireNoEmergencyStop("record");
+  const int number = session_->NextDemoNumber();
+  StartDemo(number, store::Session::ScenarioSeed(session_->manifest().seed, number, false));
+  status_ = teleop_mode_ == "scripted"
+                ? "Recording a demonstration (the scripted teacher)."
+                : "Recording a demonstration: drive the arm, Stop and keep when done.";
+}
+
+void StudioCell::Apply(const ui::StopRecording&) {
+  if (recorder_ && recorder_->recording()) Commit();
+}
+
+void StudioCell::Apply(const ui::DiscardRecording&) {
+  recorder_.reset();
+  replace_.reset();
+  status_ = "Recording discarded.";
+}
+
+void StudioCell::Apply(const ui::DeleteEpisode& c) {
+  RequireIdle("delete an episode");
+  session_->DeleteEpisode(c.name);
+  status_ = "Moved " + c.name + " to the session's trash.";
+}
+
+void StudioCell::Apply(const ui::ReRecordEpisode& c) {
+  RequireIdle("re-record");
+  RequireNoEmergencyStop("re-record");
+  const store::EpisodeEntry& e = session_->Find(c.name);
+  StartDemo(e.number, e.meta.seed);
+  replace_ = c.name;
+  status_ = "Re-recording " + c.name + ".";
+}
+
+void StudioCell::Apply(const ui::MarkEpisodeBad& c) {
+  RequireIdle("mark an episode");
+  session_->MarkBad(c.name, c.bad);
+}
+
+void StudioCell::Apply(const ui::RecordPlay& c) {
+  RequireIdle("record play data");
+  RequireNoEmergencyStop("record play data");
+  if (c.samples < 1) throw UserError("ask for at least one play sample");
+  play_target_ = c.samples;
+  play_done_ = 0;
+  StartPlayChunk();
+  status_ = "Recording " + std::to_string(c.samples) + " play samples.";
+}
+
+void StudioCell::Apply(const ui::StopPlay&) {
+  if (!play_ || !play_->recording()) return;
+  // What was recorded is good data: keep it, and ask for no more.
+  play_target_ = play_done_ + play_->samples();
+  if (play_->samples() > 0) {
+    CommitPlayChunk();
+  } else {
+    play_.reset();
+  }
+  status_ = "Stopped play recording after " + std::to_string(play_done_) + " samples.";
+}
+
+void StudioCell::Apply(const ui::SetTeleopMode& c) {
+  if (recorder_ && recorder_->recording()) {
+    throw UserError("finish or discard the recording before changing the teleop");
+  }
+  if (c.mode == "gamepad" && !gamepad_.connected()) {
+    throw UserError("no gamepad connected (looked for " + gamepad_.Places() + ")");
+  }
+  if (c.mode != "scripted" && c.mode != "keyboard" && c.mode != "gamepad") {
+    throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
+  }
+  if (c.mode == "scripted" && !source_->HasScriptedTeacher()) {
+    throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
+  }
+  teleop_mode_ = c.mode;
+}
+
+void StudioCell::Apply(const ui::TeleopInput& c) {
+  teleop_input_ = c;
+  const ViewSize view{options_.view_width, options_.view_height};
+  teleop_command_.velocity_m_s = source_->TeleopVelocity(*world_, c, view, kTeleopSpeed_m_s);
+  teleop_command_.close_gripper = c.close_gripper;
+}
+
+void StudioCell::Apply(const ui::ShowSessionPicker& c) { picking_session_ = c.show && !Busy(); }
+
+void StudioCell::Apply(const ui::OpenSession& c) {
+  RequireIdle("switch sessions");
+  if (c.dir.empty()) throw UserError("type the session's folder first");
+  OpenSessionAt(c.dir);
+}
+
+void StudioCell::Apply(const ui::PlayRollouts& c) { playback_->SetPlaying(c.playing); }
+
+void StudioCell::Apply(const ui::StartTraining& c) {
+  RequireIdle("train");
+  cli::SessionTrainingOptions training;
+  // --train-steps caps what the screen asks for; 0 leaves both to the world's recipe.
+  training.steps = options_.train_steps;
+  if (c.steps > 0) {
+    training.steps = training.steps > 0 ? std::min(c.steps, training.steps) : c.steps;
+  }
+  training = cli::WithRecipeDefaults(*session_, training);
+  training.seed = cli::DefaultTrainingSeed(*session_);
+  const std::vector<std::string> methods = c.methods;
+  jobs_.Start("training", [this, training, methods](JobThread& jobs) -> std::function<void()> {
+    std::vector<ui::TrainingView> finished = TrainMethods(jobs, *session_, training, methods);
+    return [this, finished = std::move(finished)] {
+      last_training_ = finished;
+      status_ = "Trained.";
+    };
+  });
+}
+
+void StudioCell::Apply(const ui::CancelTraining&) { jobs_.Cancel(); }
+
+void StudioCell::Apply(const ui::RunRollouts& c) {
+  RequireIdle("roll out");
+  RequireNoEmergencyStop("roll out");
+  if (std::string why = source_->CannotRollOut(); !why.empty()) throw UserError(why);
+  const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
+  jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
+    RollOutTrainedMethods(*session_, tests);
+    return [this] {
+      ReloadPlayback();
+      status_ = "Rollouts done.";
+    };
+  });
+}
+
+void StudioCell::Apply(const ui::ShowRolloutFrame& c) { playback_->Show(c.scenario, c.frame); }
+
+void StudioCell::Apply(const ui::WriteReport&) {
+  RequireIdle("write the report");
+  report_path_ = cli::WriteReportForSession(*session_);
+  status_ = "Wrote " + report_path_ + ".";
+}
+
+void StudioCell::Apply(const ui::DismissErrors&) { errors_.clear(); }
+
+void StudioCell::Apply(const ui::RescanDevices&) { scanner_.RescanNow(); }
+
+void StudioCell::Apply(const ui::EmergencyStop& c) {
+  if (!c.engage) {
+    source_->EmergencyStop(false, "");
+    estop_ = false;
+    estop_reason_.clear();
+    status_ = "E-stop released.";
+    return;
+  }
+  estop_ = true;
+  estop_reason_ = c.reason.empty() ? "e-stop pressed" : c.reason;
+  source_->EmergencyStop(true, estop_reason_);
+  // The arm stops now. The simulated arm moves only while a recording steps it, so ending the
+  // recording stops it; nothing half-taught under an e-stop is kept.
+  teleop_input_ = {};
+  teleop_command_ = {};
+  std::string stopped;
+  if (recorder_ && recorder_->recording()) {
+    stopped = "; the demonstration being recorded was discarded";
+    recorder_.reset();
+    replace_.reset();
+  }
+  if (play_ && play_->recording()) {
+    stopped = "; play recording stopped (" + std::to_string(play_done_) + " samples kept)";
+    play_.reset();
+    play_target_ = play_done_;
+  }
+  status_ = "E-STOP: " + estop_reason_ + stopped + ".";
+}
+
+}  // namespace recon::studio

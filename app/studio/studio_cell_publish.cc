@@ -1,0 +1,140 @@
+// StudioCell's snapshots: what the screens show of the session, the cell and the jobs.
+
+#include "app/studio/cell_view.h"
+#include "app/studio/session_view.h"
+#include "app/studio/studio_cell.h"
+#include "engine/core/error.h"
+
+namespace recon::studio {
+
+void StudioCell::Publish(ui::StudioSnapshot& s) {
+  if (!session_) {
+    s = {};
+    ShowWorkflow(teach::WorkflowFacts{}, s);  // the steps say they wait for a session
+    s.picking_session = true;
+    s.recent_sessions = recent_.entries();
+    ShowConnected(s);
+    ShowSafety(s);
+    s.errors = errors_;
+    s.status = status_;
+    return;
+  }
+  if (dirty_) {
+    RebuildSessionView();
+    dirty_ = false;
+  }
+  s = session_view_;
+  s.current_step = current_step_;
+  s.picking_session = picking_session_;
+  s.recent_sessions = recent_.entries();
+  RenderView(s);
+  const JobState job = jobs_.Peek();
+  s.calibration.running = job.running && job.name == "calibration";
+  s.calibration.points_collected = job.calibration_points;
+  s.recording = recorder_ && recorder_->recording();
+  s.recording_samples = recorder_ ? recorder_->samples() : 0;
+  s.teleop = teleop_mode_;
+  s.teleop_input = teleop_input_;
+  source_->ShowDevices(s);
+  source_->ShowArm(*world_, s);
+  s.recording_play = play_ && play_->recording();
+  s.play_recorded = play_done_ + (play_ ? play_->samples() : 0);
+  s.play_target = play_target_;
+  s.play_image = play_image_;
+  s.play_image_frame = play_image_frame_;
+  s.play_reading = play_reading_;
+  ShowDeviceHealth(s);
+  ShowConnected(s);
+  ShowSafety(s);
+  s.training = job.name == "training" ? job.training : last_training_;
+  s.rollouts_running = job.running && job.name == "rollouts";
+  s.rollout_tests = options_.rollout_tests;
+  ShowPlayback(s);
+  s.report_path = report_path_;
+  s.errors = errors_;
+  s.status = job.running ? "Running " + job.name + "..." : status_;
+}
+
+void StudioCell::RebuildSessionView() {
+  SessionViewInputs inputs;
+  inputs.recording_demos = recorder_ && recorder_->recording();
+  inputs.training = jobs_.RunningName() == "training";
+  inputs.calibration_points = options_.calibration_points;
+  inputs.gamepad = gamepad_.View();
+  session_view_ = BuildSessionView(*session_, inputs);
+}
+
+void StudioCell::RenderView(ui::StudioSnapshot& s) {
+  // The simulated camera is rendered only for the screens that show it (or while a take runs),
+  // so training and rollouts get the CPU it would take.
+  bool wanted = recorder_ && recorder_->recording();
+  switch (current_step_) {
+    case teach::Step::kCell:
+    case teach::Step::kBeacons:
+    case teach::Step::kRecord:
+    case teach::Step::kPlay:
+      wanted = true;
+      break;
+    default:
+      break;
+  }
+  const ViewSize view{options_.view_width, options_.view_height};
+  if (source_->ShowLive(*world_, *session_, last_reading_, wanted, view, s)) {
+    camera_health_.Add(Seconds(Clock::now()));
+  }
+}
+
+void StudioCell::ShowDeviceHealth(ui::StudioSnapshot& s) const {
+  const double now = Seconds(Clock::now());
+  const teach::StreamStats camera = camera_health_.Stats(now);
+  const teach::StreamStats beacon = beacon_health_.Stats(now);
+  const teach::StreamStats arm = arm_health_.Stats(now);
+  for (ui::DeviceView& d : s.devices) {
+    if (d.role == "camera") d.rate_hz = camera.rate_hz;
+    if (d.role == "beacons") d.rate_hz = beacon.rate_hz;
+    if (d.role == "arm") d.rate_hz = arm.rate_hz;  // commanded while recording, else idle
+  }
+  for (ui::BeaconView& b : s.beacons) {
+    b.rate_hz = beacon.rate_hz;
+    b.dropout_fraction = beacon.dropout_fraction;
+    b.noise_m = beacon.noise;
+  }
+}
+
+void StudioCell::ShowConnected(ui::StudioSnapshot& s) const {
+  uint64_t scans = 0;
+  s.connected = scanner_.Latest(&scans);
+  s.connected_scanned = scans > 0;
+  s.connected_where = scanner_.Where();
+}
+
+void StudioCell::ShowSafety(ui::StudioSnapshot& s) const {
+  s.safety.estop = estop_;
+  s.safety.estop_reason = estop_reason_;
+  source_->ShowSafety(world_.get(), s.safety);
+}
+
+void StudioCell::ShowPlaySample() {
+  const PlaySample* sample = play_->last();
+  if (sample == nullptr) return;
+  play_image_ = ImageFromObservation(sample->y, session_->manifest().image_size);
+  ++play_image_frame_;
+  play_reading_ = sample->b;
+  last_reading_ = sample->b;
+  beacon_health_.Add(Seconds(Clock::now()), last_reading_);
+}
+
+void StudioCell::ShowPlayback(ui::StudioSnapshot& s) {
+  if (current_step_ != teach::Step::kRollouts || !playback_) return;
+  // Drawn only while the Rollouts screen shows: two renders per step shown.
+  try {
+    playback_->Fill(s.rollouts, *renderer_, options_.view_width, options_.view_height);
+    s.rollouts_playing = playback_->playing();
+  } catch (const UserError& e) {
+    // A scene's data is damaged: say so once and stop the playback, not the studio.
+    AddError(std::string("cannot play the rollouts back: ") + e.what());
+    playback_ = std::make_unique<RolloutPlayback>(session_->manifest(), session_->dir());
+  }
+}
+
+}  // namespace recon::studio
