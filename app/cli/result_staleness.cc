@@ -13,8 +13,6 @@ namespace recon::cli {
 
 namespace {
 
-using json = nlohmann::json;
-
 // At most this many names are listed; the rest are counted.
 constexpr size_t kNamesListed = 5;
 
@@ -52,13 +50,12 @@ std::string Counted(const std::vector<std::string>& names) {
 
 constexpr const char* kCheckpointIdPrefix = "fnv1a:";
 
-bool IsCheckpointId(const json& id) {
-  return id.is_string() && id.get<std::string>().rfind(kCheckpointIdPrefix, 0) == 0;
+bool IsCheckpointId(const std::optional<std::string>& id) {
+  return id && id->rfind(kCheckpointIdPrefix, 0) == 0;
 }
 
-// The id of the checkpoint a record names (its "checkpoint", relative to the session).
-std::string IdOfNamedCheckpoint(const store::Session& session, const json& record) {
-  const std::string relative = record.value("checkpoint", std::string());
+// The id of the checkpoint a record names (relative to the session).
+std::string IdOfNamedCheckpoint(const store::Session& session, const std::string& relative) {
   if (relative.empty()) return "";
   return CheckpointModelId((std::filesystem::path(session.dir()) / relative).string());
 }
@@ -72,25 +69,24 @@ std::string CheckpointModelId(const std::string& path) {
   return kCheckpointIdPrefix + DigestHex(Fnv1a(bytes));
 }
 
-std::string TrainingStaleness(const store::Session& session, const json& training) {
-  if (!training.is_object()) return "";
-  if (IsCheckpointId(training.value("model_id", json(nullptr)))) {
-    const std::string now = IdOfNamedCheckpoint(session, training);
-    const std::string checkpoint = training.value("checkpoint", std::string());
-    if (now.empty()) return "its model " + checkpoint + " is gone: retrain";
-    if (now != training["model_id"].get<std::string>()) {
-      return checkpoint +
+std::string TrainingStaleness(const store::Session& session,
+                              const store::TrainingRecord& training) {
+  if (IsCheckpointId(training.model_id)) {
+    const std::string now = IdOfNamedCheckpoint(session, training.checkpoint);
+    if (now.empty()) return "its model " + training.checkpoint + " is gone: retrain";
+    if (now != *training.model_id) {
+      return training.checkpoint +
              " holds another model than this record describes (a training stopped after saving "
              "its model and before its record): retrain";
     }
   }
-  if (!training.contains("trained_on")) return "";
-  const json& on = training["trained_on"];
+  if (!training.trained_on) return "";
+  const store::TrainedOn& on = *training.trained_on;
   store::DatasetOptions options;
   options.split = store::Split::kTrain;
-  options.include_bad = on.value("include_bad", false);
-  options.include_play = on.value("use_play", false);
-  const std::vector<std::string> then = on.value("episodes", std::vector<std::string>{});
+  options.include_bad = on.include_bad;
+  options.include_play = on.use_play;
+  const std::vector<std::string>& then = on.episodes;
   const std::vector<std::string> now = session.DatasetEpisodeNames(options);
   if (then == now) return "";
   const std::vector<std::string> added = Missing(now, then);
@@ -107,26 +103,41 @@ std::string TrainingStaleness(const store::Session& session, const json& trainin
   return why + ": retrain to use the session as it is";
 }
 
-std::string RolloutStaleness(const store::Session& session, const json& rollouts,
-                             const json& training) {
-  if (!rollouts.is_object() || !rollouts.contains("model_id") || rollouts["model_id"].is_null()) {
-    return "";  // from before model ids: nothing to compare
-  }
-  if (IsCheckpointId(rollouts["model_id"])) {
-    const std::string now = IdOfNamedCheckpoint(session, rollouts);
+std::string RolloutStaleness(const store::Session& session, const store::RolloutSummary& rollouts,
+                             const std::optional<store::TrainingRecord>& training) {
+  if (!rollouts.model_id) return "";  // from before model ids: nothing to compare
+  if (IsCheckpointId(rollouts.model_id)) {
+    const std::string now = IdOfNamedCheckpoint(session, rollouts.checkpoint);
     if (now.empty()) return "the model these rollouts are of is gone: retrain";
-    if (now != rollouts["model_id"].get<std::string>()) {
+    if (now != *rollouts.model_id) {
       return "the model was retrained after these rollouts: roll it out again";
     }
   } else {
-    if (!training.is_object()) return "the model these rollouts are of is gone: retrain";
-    if (training.value("model_id", json(nullptr)) != rollouts["model_id"]) {
+    if (!training) return "the model these rollouts are of is gone: retrain";
+    if (training->model_id != rollouts.model_id) {
       return "the model was retrained after these rollouts: roll it out again";
     }
   }
-  if (TrainingStaleness(session, training).empty()) return "";
+  if (!training || TrainingStaleness(session, *training).empty()) return "";
   return "rolled out with a model of the session as it was (see its training): retrain and roll "
          "out again";
+}
+
+SessionResults ReadSessionResults(const store::Session& session) {
+  SessionResults results;
+  for (auto& [method, record] : store::ReadTrainingRecords(session)) {
+    std::string why = TrainingStaleness(session, record);
+    results.training[method] = {std::move(record), std::move(why)};
+  }
+  for (auto& [method, summary] : store::ReadRolloutSummaries(session)) {
+    const auto trained = results.training.find(method);
+    std::string why = RolloutStaleness(session, summary,
+                                       trained == results.training.end()
+                                           ? std::nullopt
+                                           : std::make_optional(trained->second.record));
+    results.rollouts[method] = {std::move(summary), std::move(why)};
+  }
+  return results;
 }
 
 }  // namespace recon::cli

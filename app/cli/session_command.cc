@@ -47,11 +47,12 @@ void PrintJson(const json& value) { std::printf("%s\n", value.dump(2).c_str()); 
 
 void RunInfo(const SessionFlags& flags) {
   const store::Session session = store::Session::Open(flags.dir, store::Session::Access::kReadOnly);
-  const json info = SessionInfoJson(session);
+  const SessionResults results = ReadSessionResults(session);
+  const json info = SessionInfoJson(session, results);
   if (flags.json) {
     PrintJson(info);
   } else {
-    std::printf("%s", SessionInfoText(session, info).c_str());
+    std::printf("%s", SessionInfoText(session, info, results).c_str());
   }
 }
 

@@ -1,6 +1,5 @@
 #include "app/cli/session_report_builder.h"
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -21,12 +20,6 @@ using json = nlohmann::json;
 // for 4 demonstrations. Scaled here to the session's number of demonstrations.
 constexpr double kPaperSecondsPerDemo = 16.6;
 constexpr double kPaperReconPlayExtra = 75.0 - 66.4;
-
-std::vector<double> Doubles(const json& values) {
-  std::vector<double> out;
-  for (const json& v : values) out.push_back(v.is_number() ? v.get<double>() : std::nan(""));
-  return out;
-}
 
 std::string Fixed(double value, int digits) {
   char text[64];
@@ -73,27 +66,23 @@ void AddFacts(const store::Session& session, const json& info, report::SessionRe
   }
 }
 
-void AddLosses(const json& training, report::SessionReport& r) {
+void AddLosses(const SessionResults& results, report::SessionReport& r) {
   for (const char* method : {"baseline", "recon"}) {
-    if (!training.contains(method)) continue;
-    const json& t = training[method];
+    const auto found = results.training.find(method);
+    if (found == results.training.end()) continue;
+    const store::TrainingRecord& t = found->second.record;
     report::SessionReport::LossHistory h;
-    h.label = t.value("label", std::string(method));
-    const json& history = t["history"];
-    h.step = Doubles(history["step"]);
-    h.action_loss = Doubles(history["action_loss"]);
-    h.total_loss = Doubles(history["total_loss"]);
+    h.label = t.label;
+    h.step.assign(t.history.step.begin(), t.history.step.end());
+    h.action_loss = t.history.action_loss;
+    h.total_loss = t.history.total_loss;
     if (std::string(method) == "recon") {
-      h.beacon_loss = Doubles(history["beacon_loss"]);
-      if (t.value("play_samples", 0) > 0) h.play_loss = Doubles(history["play_loss"]);
+      h.beacon_loss = t.history.beacon_loss;
+      if (t.play_samples > 0) h.play_loss = t.history.play_loss;
     }
-    h.note = std::to_string(t.value("steps", 0)) + " steps, seed " +
-             std::to_string(t.value("seed", uint64_t{0})) + ", " +
-             Fixed(t.value("seconds", 0.0), 1) + " s, " +
-             std::to_string(t.value("train_demos", 0)) + " demonstrations";
-    if (t.contains("out_of_date") && t["out_of_date"].is_string()) {
-      h.out_of_date = t["out_of_date"].get<std::string>();
-    }
+    h.note = std::to_string(t.steps) + " steps, seed " + std::to_string(t.seed) + ", " +
+             Fixed(t.seconds, 1) + " s, " + std::to_string(t.train_demos) + " demonstrations";
+    h.out_of_date = found->second.out_of_date;
     r.losses.push_back(h);
   }
 }
@@ -147,28 +136,27 @@ void AddCalibration(const store::Session& session, report::SessionReport& r) {
   for (bool outlier : cal.outlier) r.calibration.inlier.push_back(!outlier);
 }
 
-void AddRollouts(const json& rollouts, report::SessionReport& r) {
+void AddRollouts(const SessionResults& results, report::SessionReport& r) {
   for (const char* method : {"baseline", "recon"}) {
-    if (!rollouts.contains(method)) continue;
-    const json& e = rollouts[method];
+    const auto found = results.rollouts.find(method);
+    if (found == results.rollouts.end()) continue;
+    const store::RolloutSummary& e = found->second.record;
     report::SessionReport::Rollout rollout;
-    rollout.label = e.value("label", std::string(method));
-    rollout.metric_name = e.value("metric_name", std::string("metric"));
-    rollout.higher_is_better = e.value("higher_is_better", false);
-    rollout.metric_mean = e.value("metric_mean", 0.0);
-    rollout.metric_sem = e.value("metric_sem", 0.0);
-    rollout.tests = e.value("tests", 0);
-    rollout.has_success = e.value("has_success", false);
-    rollout.success_rate = e.value("success_rate", 0.0);
-    rollout.success_sem = e.value("success_sem", 0.0);
-    if (e.contains("details")) rollout.details = e["details"].get<std::map<std::string, double>>();
+    rollout.label = e.label;
+    rollout.metric_name = e.metric_name;
+    rollout.higher_is_better = e.higher_is_better;
+    rollout.metric_mean = e.metric_mean;
+    rollout.metric_sem = e.metric_sem;
+    rollout.tests = e.tests;
+    rollout.has_success = e.has_success;
+    rollout.success_rate = e.success_rate;
+    rollout.success_sem = e.success_sem;
+    rollout.details = e.details;
     rollout.note = std::to_string(rollout.tests) +
                    " test scenarios with the beacons removed, "
                    "seeds derived from " +
-                   std::to_string(e.value("seed", uint64_t{0}));
-    if (e.contains("out_of_date") && e["out_of_date"].is_string()) {
-      rollout.out_of_date = e["out_of_date"].get<std::string>();
-    }
+                   std::to_string(e.seed);
+    rollout.out_of_date = found->second.out_of_date;
     r.rollouts.push_back(rollout);
   }
 }
@@ -195,16 +183,17 @@ void AddLedger(const json& ledger, report::SessionReport& r) {
 
 report::SessionReport BuildSessionReport(const store::Session& session,
                                          const std::string& episode) {
-  const json info = SessionInfoJson(session);
+  const SessionResults results = ReadSessionResults(session);
+  const json info = SessionInfoJson(session, results);
   report::SessionReport r;
   r.title = "Teaching session: " + session.manifest().world;
   r.session_path = fs::absolute(session.dir()).lexically_normal().string();
   r.generated = store::NowIso8601();
   AddFacts(session, info, r);
-  AddLosses(info["training"], r);
+  AddLosses(results, r);
   AddBeaconTraces(session, episode, r);
   AddCalibration(session, r);
-  AddRollouts(info["rollouts"], r);
+  AddRollouts(results, r);
   AddLedger(info["teaching_time"], r);
   return r;
 }

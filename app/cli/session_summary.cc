@@ -2,12 +2,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <map>
 #include <sstream>
 
-#include "app/cli/result_staleness.h"
 #include "engine/calib/calibration.h"
-#include "engine/core/error.h"
 
 namespace recon::cli {
 
@@ -22,33 +20,20 @@ std::string Format(const char* format, double value) {
   return text;
 }
 
-/// training/<method>.json and rollouts/<method>.json, by method.
-json ResultsIn(const store::Session& session, const std::string& folder) {
-  json results = json::object();
-  const fs::path dir = fs::path(session.dir()) / folder;
-  if (!fs::is_directory(dir)) return results;
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-    if (entry.path().extension() != ".json") continue;
-    if (auto value = ReadJsonFile(entry.path().string())) {
-      results[entry.path().stem().string()] = *value;
-    }
+/// Results by method as their files hold them, each with why it is out of date (null if not).
+template <typename Record>
+json ResultsJson(const std::map<std::string, CheckedResult<Record>>& results,
+                 json (*to_json)(const Record&)) {
+  json all = json::object();
+  for (const auto& [method, result] : results) {
+    json item = to_json(result.record);
+    item["out_of_date"] = result.out_of_date.empty() ? json(nullptr) : json(result.out_of_date);
+    all[method] = item;
   }
-  return results;
+  return all;
 }
 
 }  // namespace
-
-std::optional<json> ReadJsonFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
-  try {
-    return json::parse(text.str());
-  } catch (const json::parse_error& e) {
-    throw UserError(path + ": not valid JSON (" + e.what() + ")");
-  }
-}
 
 json TeachingLedgerJson(const store::Session& session) {
   const store::SessionManifest& m = session.manifest();
@@ -109,7 +94,7 @@ json EpisodesJson(const store::Session& session) {
   return list;
 }
 
-json SessionInfoJson(const store::Session& session) {
+json SessionInfoJson(const store::Session& session, const SessionResults& results) {
   const store::SessionManifest& m = session.manifest();
   int usable = 0, bad = 0, train = 0, valid = 0, succeeded = 0;
   int64_t samples = 0;
@@ -148,19 +133,8 @@ json SessionInfoJson(const store::Session& session) {
                {"play_chunks", session.play_chunks().size()},
                {"damaged", damaged},
                {"teaching_time", TeachingLedgerJson(session)},
-               {"training", ResultsIn(session, "training")},
-               {"rollouts", ResultsIn(session, "rollouts")}};
-  // Each result says whether it still describes the session (result_staleness.h).
-  for (auto& [method, t] : info["training"].items()) {
-    const std::string why = TrainingStaleness(session, t);
-    t["out_of_date"] = why.empty() ? json(nullptr) : json(why);
-  }
-  for (auto& [method, r] : info["rollouts"].items()) {
-    const json none;
-    const json& trained = info["training"].contains(method) ? info["training"][method] : none;
-    const std::string why = RolloutStaleness(session, r, trained);
-    r["out_of_date"] = why.empty() ? json(nullptr) : json(why);
-  }
+               {"training", ResultsJson(results.training, &store::TrainingRecordToJson)},
+               {"rollouts", ResultsJson(results.rollouts, &store::RolloutSummaryToJson)}};
   info["calibration"] = nullptr;
   if (!m.calibration_file.empty()) {
     const calib::CalibrationReport cal =
@@ -174,7 +148,8 @@ json SessionInfoJson(const store::Session& session) {
   return info;
 }
 
-std::string SessionInfoText(const store::Session& session, const json& info) {
+std::string SessionInfoText(const store::Session& session, const json& info,
+                            const SessionResults& results) {
   std::ostringstream out;
   const store::SessionManifest& m = session.manifest();
   out << "session " << session.dir() << ": " << m.world << " (" << m.cell << " cell), created "
@@ -218,23 +193,23 @@ std::string SessionInfoText(const store::Session& session, const json& info) {
         << c["inliers"].get<int>() << " of " << c["points"].get<size_t>() << " points, "
         << (c["passed"].get<bool>() ? "PASS" : "FAIL") << "\n";
   }
-  for (const auto& [method, t] : info["training"].items()) {
-    out << "  trained:        " << method << ": " << t.value("steps", 0) << " steps, final loss "
-        << Format("%.4g", t["final"].value("total_loss", 0.0)) << "\n";
-    if (t.contains("out_of_date") && t["out_of_date"].is_string()) {
-      out << "  OUT OF DATE:    " << method << ": " << t["out_of_date"].get<std::string>() << "\n";
+  for (const auto& [method, t] : results.training) {
+    out << "  trained:        " << method << ": " << t.record.steps << " steps, final loss "
+        << Format("%.4g", t.record.final_losses.total_loss) << "\n";
+    if (!t.out_of_date.empty()) {
+      out << "  OUT OF DATE:    " << method << ": " << t.out_of_date << "\n";
     }
   }
-  for (const auto& [method, r] : info["rollouts"].items()) {
-    out << "  rolled out:     " << method << ": " << r.value("metric_name", std::string("metric"))
-        << " " << Format("%.4g", r.value("metric_mean", 0.0));
-    if (r.value("has_success", false)) {
-      out << ", success " << Format("%.0f", 100.0 * r.value("success_rate", 0.0)) << "%";
+  for (const auto& [method, r] : results.rollouts) {
+    const store::RolloutSummary& summary = r.record;
+    out << "  rolled out:     " << method << ": " << summary.metric_name << " "
+        << Format("%.4g", summary.metric_mean);
+    if (summary.has_success) {
+      out << ", success " << Format("%.0f", 100.0 * summary.success_rate) << "%";
     }
-    out << " over " << r.value("tests", 0) << " scenarios\n";
-    if (r.contains("out_of_date") && r["out_of_date"].is_string()) {
-      out << "  OUT OF DATE:    " << method << " rollouts: " << r["out_of_date"].get<std::string>()
-          << "\n";
+    out << " over " << summary.tests << " scenarios\n";
+    if (!r.out_of_date.empty()) {
+      out << "  OUT OF DATE:    " << method << " rollouts: " << r.out_of_date << "\n";
     }
   }
   return out.str();

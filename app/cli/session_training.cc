@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "app/cli/result_staleness.h"
-#include "app/cli/session_summary.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -27,7 +26,6 @@ namespace recon::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 constexpr int kHistoryPoints = 200;  // loss curve points kept per training run
 
@@ -77,10 +75,10 @@ SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
   return options;
 }
 
-json TrainSessionMethod(const store::Session& session, const std::string& method,
-                        const SessionTrainingOptions& flags,
-                        const std::function<void(const TrainingProgress&)>& on_progress,
-                        const std::atomic<bool>* cancel) {
+store::TrainingRecord TrainSessionMethod(
+    const store::Session& session, const std::string& method, const SessionTrainingOptions& flags,
+    const std::function<void(const TrainingProgress&)>& on_progress,
+    const std::atomic<bool>* cancel) {
   const uint64_t seed = flags.seed;
   const store::SessionManifest& m = session.manifest();
   const bool recon = method == "recon";
@@ -113,42 +111,34 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
   train.seed = seed;
   learn::Trainer trainer(data, network, train);
 
-  json history = {{"step", json::array()},
-                  {"action_loss", json::array()},
-                  {"beacon_loss", json::array()},
-                  {"play_loss", json::array()},
-                  {"consistency_loss", json::array()},
-                  {"total_loss", json::array()}};
+  store::TrainingHistory history;
   const int window = std::max(1, train.steps / kHistoryPoints);
-  double sums[5] = {0, 0, 0, 0, 0};
+  store::TrainingLosses sums;
   int count = 0;
   TrainingProgress progress{method, Label(method, play), 0, train.steps, {}};
   trainer.SetObserver([&](const learn::StepMetrics& s) {
     if (s.step == 0) {  // a restart begins a fresh curve
-      for (auto& [key, values] : history.items()) values = json::array();
+      history.Clear();
       count = 0;
-      for (double& v : sums) v = 0;
+      sums = {};
     }
-    sums[0] += s.action_loss;
-    sums[1] += s.beacon_loss;
-    sums[2] += s.play_loss;
-    sums[3] += s.total_loss;
-    sums[4] += s.consistency_loss;
+    sums.action_loss += s.action_loss;
+    sums.beacon_loss += s.beacon_loss;
+    sums.play_loss += s.play_loss;
+    sums.total_loss += s.total_loss;
+    sums.consistency_loss += s.consistency_loss;
     if (++count == window) {
-      history["step"].push_back(s.step + 1 - window / 2);
-      history["action_loss"].push_back(sums[0] / count);
-      history["beacon_loss"].push_back(sums[1] / count);
-      history["play_loss"].push_back(sums[2] / count);
-      history["total_loss"].push_back(sums[3] / count);
-      history["consistency_loss"].push_back(sums[4] / count);
+      history.Append(s.step + 1 - window / 2,
+                     {sums.action_loss / count, sums.beacon_loss / count, sums.play_loss / count,
+                      sums.consistency_loss / count, sums.total_loss / count});
       count = 0;
-      for (double& v : sums) v = 0;
+      sums = {};
       progress.step = s.step + 1;
       progress.latest = s;
-      progress.latest.action_loss = static_cast<float>(history["action_loss"].back().get<double>());
-      progress.latest.beacon_loss = static_cast<float>(history["beacon_loss"].back().get<double>());
-      progress.latest.play_loss = static_cast<float>(history["play_loss"].back().get<double>());
-      progress.latest.total_loss = static_cast<float>(history["total_loss"].back().get<double>());
+      progress.latest.action_loss = static_cast<float>(history.action_loss.back());
+      progress.latest.beacon_loss = static_cast<float>(history.beacon_loss.back());
+      progress.latest.play_loss = static_cast<float>(history.play_loss.back());
+      progress.latest.total_loss = static_cast<float>(history.total_loss.back());
       if (on_progress) on_progress(progress);
     }
   });
@@ -158,60 +148,53 @@ json TrainSessionMethod(const store::Session& session, const std::string& method
                     std::to_string(result.steps_run) + "; nothing was saved");
   }
 
-  const std::string checkpoint =
-      (fs::path(session.dir()) / "checkpoints" / (method + ".ckpt")).string();
+  const std::string checkpoint = session.CheckpointPath(method);
   EnsureWritableDirectory(fs::path(checkpoint).parent_path().string());
   trainer.SaveCheckpoint(checkpoint);
   const learn::Policy policy = trainer.policy();
-  const json record = {
-      {"method", method},
-      {"label", Label(method, play)},
-      {"checkpoint", fs::path("checkpoints") / (method + ".ckpt")},
-      {"steps", result.steps_run},
-      {"attempts", result.attempts},
-      {"seconds", result.seconds},
-      {"seed", seed},
-      {"loss", flags.loss},
-      {"batch", flags.batch},
-      {"learning_rate", train.learning_rate},
-      {"feature_dim", flags.feature_dim},
-      {"play_consistency", train.play_consistency},
-      {"nll_min_std", train.nll_min_std},
-      {"action_min_std", train.action_min_std},
-      {"train_demos", data.demos.size()},
-      {"train_samples", data.NumDemoSamples()},
-      {"play_samples", data.play.size()},
-      {"valid_demos", valid.demos.size()},
-      // What the session's results are checked against later (result_staleness.h): which
-      // episodes this model learnt from, chosen how, and which training this was.
-      {"trained_on",
-       {{"episodes", trained_on},
-        {"include_bad", options.include_bad},
-        {"use_play", recon && !!flags.use_play}}},
-      // The checkpoint's own digest: a record that outlives its model is found
-      // (result_staleness.h).
-      {"model_id", CheckpointModelId(checkpoint)},
-      {"final",
-       {{"action_loss", result.final_metrics.action_loss},
-        {"beacon_loss", result.final_metrics.beacon_loss},
-        {"play_loss", result.final_metrics.play_loss},
-        {"consistency_loss", result.final_metrics.consistency_loss},
-        {"total_loss", result.final_metrics.total_loss}}},
-      {"train_action_mse", ActionMse(policy, data)},
-      {"valid_action_mse", valid.demos.empty() ? json(nullptr) : json(ActionMse(policy, valid))},
-      {"history", history}};
-  const std::string path = (fs::path(session.dir()) / "training" / (method + ".json")).string();
+  store::TrainingRecord record;
+  record.method = method;
+  record.label = Label(method, play);
+  record.checkpoint = store::Session::CheckpointRelativePath(method);
+  record.steps = result.steps_run;
+  record.attempts = result.attempts;
+  record.seconds = result.seconds;
+  record.seed = seed;
+  record.loss = flags.loss;
+  record.batch = flags.batch;
+  record.learning_rate = train.learning_rate;
+  record.feature_dim = flags.feature_dim;
+  record.play_consistency = train.play_consistency;
+  record.nll_min_std = train.nll_min_std;
+  record.action_min_std = train.action_min_std;
+  record.train_demos = static_cast<int>(data.demos.size());
+  record.train_samples = data.NumDemoSamples();
+  record.play_samples = static_cast<int>(data.play.size());
+  record.valid_demos = static_cast<int>(valid.demos.size());
+  // What the session's results are checked against later (result_staleness.h): which episodes
+  // this model learnt from, chosen how, and which training this was.
+  record.trained_on = store::TrainedOn{trained_on, options.include_bad, recon && !!flags.use_play};
+  // The checkpoint's own digest: a record that outlives its model is found
+  // (result_staleness.h).
+  record.model_id = CheckpointModelId(checkpoint);
+  const learn::StepMetrics& last = result.final_metrics;
+  record.final_losses = {last.action_loss, last.beacon_loss, last.play_loss, last.consistency_loss,
+                         last.total_loss};
+  record.train_action_mse = ActionMse(policy, data);
+  if (!valid.demos.empty()) record.valid_action_mse = ActionMse(policy, valid);
+  record.history = std::move(history);
+  const std::string path = session.TrainingRecordPath(method);
   EnsureWritableDirectory(fs::path(path).parent_path().string());
-  WriteFileAtomically(path, record.dump(1) + "\n");
+  store::WriteTrainingRecord(path, record);
   return record;
 }
 
-json EvaluateSessionMethod(const store::Session& session, const std::string& method, int tests,
-                           uint64_t seed, bool keep_replay) {
+store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
+                                            const std::string& method, int tests, uint64_t seed,
+                                            bool keep_replay) {
   const store::SessionManifest& m = session.manifest();
   learn::ParseMethod(method);
-  const std::string checkpoint =
-      (fs::path(session.dir()) / "checkpoints" / (method + ".ckpt")).string();
+  const std::string checkpoint = session.CheckpointPath(method);
   if (!fs::exists(checkpoint)) {
     throw UserError("no checkpoint " + checkpoint + ": run `recon train --session " +
                     session.dir() + " --methods " + method + "` first");
@@ -231,23 +214,17 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<double> metrics = experiments::Metrics(outcomes);
   std::vector<double> successes;
-  json per_scenario = json::array();
+  store::RolloutSummary summary;
   for (size_t i = 0; i < outcomes.size(); ++i) {
     successes.push_back(outcomes[i].succeeded ? 1.0 : 0.0);
-    per_scenario.push_back({{"seed", seeds[i]},
-                            {"metric", outcomes[i].metric},
-                            {"succeeded", outcomes[i].succeeded},
-                            {"details", outcomes[i].details}});
+    summary.per_scenario.push_back(
+        {seeds[i], outcomes[i].metric, outcomes[i].succeeded, outcomes[i].details});
   }
-  const std::optional<json> trained =
-      ReadJsonFile((fs::path(session.dir()) / "training" / (method + ".json")).string());
-  const std::string label = trained && trained->is_object() && trained->contains("label")
-                                ? (*trained)["label"].get<std::string>()
-                                : method;
-  // The replay goes first: once the JSON names it, it is there. A replay left from an earlier
-  // evaluation would show other rollouts than the JSON describes, so it goes when none is kept.
-  const fs::path replay_name = fs::path("rollouts") / (method + ".replay.h5");
-  const std::string replay_path = (fs::path(session.dir()) / replay_name).string();
+  const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
+  // The replay goes first: once the summary names it, it is there. A replay left from an earlier
+  // evaluation would show other rollouts than the summary describes, so it goes when none is
+  // kept.
+  const std::string replay_path = session.RolloutReplayPath(method);
   const bool has_replay = !outcomes.empty() && !outcomes.front().replay.empty();
   EnsureWritableDirectory(fs::path(replay_path).parent_path().string());
   if (has_replay) {
@@ -260,31 +237,29 @@ json EvaluateSessionMethod(const store::Session& session, const std::string& met
           {seeds[i], outcomes[i].metric, outcomes[i].succeeded, std::move(outcomes[i].replay)});
     }
     store::WriteRolloutReplay(replay_path, replay);
+    summary.replay = store::Session::RolloutReplayRelativePath(method);
   } else {
     std::error_code ignored;
     fs::remove(replay_path, ignored);
   }
-  json record = {{"method", method},
-                 {"label", label},
-                 {"checkpoint", fs::path("checkpoints") / (method + ".ckpt")},
-                 {"model_id", model_id},
-                 {"metric_name", probe->MetricName()},
-                 {"metric_key", probe->MetricKey()},
-                 {"higher_is_better", probe->HigherIsBetter()},
-                 {"metric_mean", Mean(metrics)},
-                 {"metric_sem", StandardError(metrics)},
-                 {"has_success", probe->HasSuccess()},
-                 {"success_rate", Mean(successes)},
-                 {"success_sem", StandardError(successes)},
-                 {"details", experiments::MeanDetails(outcomes)},
-                 {"tests", tests},
-                 {"seed", seed},
-                 {"seconds", seconds},
-                 {"per_scenario", per_scenario}};
-  if (has_replay) record["replay"] = replay_name.string();
-  const std::string path = (fs::path(session.dir()) / "rollouts" / (method + ".json")).string();
-  WriteFileAtomically(path, record.dump(1) + "\n");
-  return record;
+  summary.method = method;
+  summary.label = trained ? trained->label : method;
+  summary.checkpoint = store::Session::CheckpointRelativePath(method);
+  summary.model_id = model_id;
+  summary.metric_name = probe->MetricName();
+  summary.metric_key = probe->MetricKey();
+  summary.higher_is_better = probe->HigherIsBetter();
+  summary.metric_mean = Mean(metrics);
+  summary.metric_sem = StandardError(metrics);
+  summary.has_success = probe->HasSuccess();
+  summary.success_rate = Mean(successes);
+  summary.success_sem = StandardError(successes);
+  summary.details = experiments::MeanDetails(outcomes);
+  summary.tests = tests;
+  summary.seed = seed;
+  summary.seconds = seconds;
+  store::WriteRolloutSummary(session.RolloutSummaryPath(method), summary);
+  return summary;
 }
 
 uint64_t DefaultTrainingSeed(const store::Session& session) {

@@ -3,11 +3,12 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "engine/learn/learner.h"
+#include "engine/store/rollout_summary.h"
 #include "engine/store/session.h"
+#include "engine/store/training_record.h"
 
 namespace recon::cli {
 
@@ -37,24 +38,25 @@ struct TrainingProgress {
 SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
                                           SessionTrainingOptions options);
 
-/// Trains `method` ("baseline" or "recon") on the session's training split, then writes
-/// checkpoints/<method>.ckpt and training/<method>.json (recipe, seed, final losses, train and
-/// validation action MSE, loss curve) and returns that record. `on_progress` is called from the
+/// Trains `method` ("baseline" or "recon") on the session's training split, then writes its
+/// checkpoint and its training record (recipe, seed, final losses, train and validation action
+/// MSE, loss curve) and returns that record. `on_progress` is called from the
 /// calling thread about 200 times. Stops when *cancel becomes true and throws UserError
 /// (nothing is written). UserError when the session has nothing to train on.
-nlohmann::json TrainSessionMethod(
+store::TrainingRecord TrainSessionMethod(
     const store::Session& session, const std::string& method, const SessionTrainingOptions& options,
     const std::function<void(const TrainingProgress&)>& on_progress = {},
     const std::atomic<bool>* cancel = nullptr);
 
 /// Rolls `method`'s checkpoint out on `tests` new scenes of the session's simulated cell with the
-/// beacons removed (scene i from Rng::Derive(seed, i)), writes rollouts/<method>.json and returns
-/// it. When the world has a replay (World::ReplayState) and `keep_replay`, also writes every
-/// step's state to rollouts/<method>.replay.h5 (store/rollout_replay.h), before the JSON, which
-/// names it as "replay"; otherwise an older replay file of the method is removed. UserError
-/// without a checkpoint or a simulated world.
-nlohmann::json EvaluateSessionMethod(const store::Session& session, const std::string& method,
-                                     int tests, uint64_t seed, bool keep_replay = true);
+/// beacons removed (scene i from Rng::Derive(seed, i)), writes the method's rollout summary and
+/// returns it. When the world has a replay (World::ReplayState) and `keep_replay`, also writes
+/// every step's state to the method's replay file (store/rollout_replay.h), before the summary,
+/// which names it; otherwise an older replay file of the method is removed. UserError without a
+/// checkpoint or a simulated world.
+store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
+                                            const std::string& method, int tests, uint64_t seed,
+                                            bool keep_replay = true);
 
 /// The seeds a session trains and tests with unless told otherwise (derived from its own).
 uint64_t DefaultTrainingSeed(const store::Session& session);

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,7 +25,6 @@ namespace recon::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 struct TrainFlags {
   std::string session;
@@ -105,7 +103,7 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
     }
     progress.Advance(advance, detail);
   };
-  std::vector<json> records(flags.methods.size());
+  std::vector<store::TrainingRecord> records(flags.methods.size());
   std::vector<std::exception_ptr> errors(flags.methods.size());
   ParallelFor(
       flags.methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
@@ -120,19 +118,16 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
   // A method that finished keeps its checkpoint and says so; then the first failure is reported.
   for (size_t i = 0; i < flags.methods.size(); ++i) {
     if (errors[i]) continue;
-    const json& record = records[i];
-    const bool has_valid = !record["valid_action_mse"].is_null();
+    const store::TrainingRecord& record = records[i];
+    const std::string valid =
+        record.valid_action_mse ? ", valid " + std::to_string(*record.valid_action_mse) : "";
     std::printf(
         "%-14s %d demos (%lld samples), %d play, %d steps in %.1f s, seed %llu: action MSE "
         "train %.4g%s; wrote %s/%s\n",
-        record["label"].get<std::string>().c_str(), record["train_demos"].get<int>(),
-        static_cast<long long>(record["train_samples"].get<int64_t>()),
-        record["play_samples"].get<int>(), record["steps"].get<int>(),
-        record["seconds"].get<double>(), static_cast<unsigned long long>(options.seed),
-        record["train_action_mse"].get<double>(),
-        has_valid ? (", valid " + std::to_string(record["valid_action_mse"].get<double>())).c_str()
-                  : "",
-        flags.session.c_str(), record["checkpoint"].get<std::string>().c_str());
+        record.label.c_str(), record.train_demos, static_cast<long long>(record.train_samples),
+        record.play_samples, record.steps, record.seconds,
+        static_cast<unsigned long long>(options.seed), record.train_action_mse, valid.c_str(),
+        flags.session.c_str(), record.checkpoint.c_str());
   }
   std::fflush(stdout);
   for (const std::exception_ptr& error : errors) {
@@ -153,7 +148,7 @@ void RunEval(const EvalFlags& flags) {
   std::vector<std::string> methods = flags.methods;
   if (methods.empty()) {
     for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(fs::path(flags.session) / "checkpoints" / (std::string(method) + ".ckpt"))) {
+      if (fs::exists(session.CheckpointPath(method))) {
         methods.push_back(method);
       }
     }
@@ -167,8 +162,7 @@ void RunEval(const EvalFlags& flags) {
   MakeSessionWorld(m, "none");  // fails early for sessions without a simulated world
   // Every checkpoint is loaded (and so checked) before the first rollout file is replaced.
   for (const std::string& method : methods) {
-    const std::string checkpoint =
-        (fs::path(flags.session) / "checkpoints" / (method + ".ckpt")).string();
+    const std::string checkpoint = session.CheckpointPath(method);
     if (!fs::exists(checkpoint)) {
       throw UserError("no checkpoint " + checkpoint + ": run `recon train --session " +
                       flags.session + " --methods " + method + "` first; no rollouts were written");
@@ -184,18 +178,16 @@ void RunEval(const EvalFlags& flags) {
   std::fflush(stdout);
   ProgressLine progress("rolling out", static_cast<int64_t>(methods.size()));
   for (const std::string& method : methods) {
-    const json r = EvaluateSessionMethod(session, method, flags.tests, seed);
-    progress.Advance(1, r["label"].get<std::string>());
-    const std::string success = r["has_success"].get<bool>()
-                                    ? "  success " +
-                                          std::to_string(static_cast<int>(
-                                              std::lround(100 * r["success_rate"].get<double>()))) +
-                                          "%"
-                                    : "";
-    std::printf("\n%-14s %s %.4g ± %.2g%s  (%.1f s; wrote %s/rollouts/%s.json)\n",
-                r["label"].get<std::string>().c_str(), r["metric_key"].get<std::string>().c_str(),
-                r["metric_mean"].get<double>(), r["metric_sem"].get<double>(), success.c_str(),
-                r["seconds"].get<double>(), flags.session.c_str(), method.c_str());
+    const store::RolloutSummary r = EvaluateSessionMethod(session, method, flags.tests, seed);
+    progress.Advance(1, r.label);
+    const std::string success =
+        r.has_success
+            ? "  success " + std::to_string(static_cast<int>(std::lround(100 * r.success_rate))) +
+                  "%"
+            : "";
+    std::printf("\n%-14s %s %.4g ± %.2g%s  (%.1f s; wrote %s/%s)\n", r.label.c_str(),
+                r.metric_key.c_str(), r.metric_mean, r.metric_sem, success.c_str(), r.seconds,
+                flags.session.c_str(), store::Session::RolloutSummaryRelativePath(method).c_str());
   }
   progress.Finish();
 }

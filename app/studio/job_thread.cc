@@ -7,6 +7,18 @@
 
 namespace recon::studio {
 
+const char* JobKindName(JobKind kind) {
+  switch (kind) {
+    case JobKind::kCalibration:
+      return "calibration";
+    case JobKind::kTraining:
+      return "training";
+    case JobKind::kRollouts:
+      return "rollouts";
+  }
+  return "job";
+}
+
 JobThread::JobThread() {
   thread_ = std::thread([this] {
     const std::unique_ptr<worlds::SceneRenderer> keep = render::MujocoRendererFactory()();
@@ -31,19 +43,19 @@ bool JobThread::Running() const {
   return state_.running || state_.finish != nullptr || !state_.error.empty() || work_ != nullptr;
 }
 
-std::string JobThread::RunningName() const {
+std::optional<JobKind> JobThread::RunningKind() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return state_.running || work_ != nullptr ? state_.name : "";
+  return state_.running || work_ != nullptr ? state_.kind : std::nullopt;
 }
 
-void JobThread::Start(const std::string& name, Work work) {
+void JobThread::Start(JobKind kind, Work work) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (state_.running || work_ != nullptr) {
-    throw UserError("wait for the " + state_.name + " to finish");
+    throw UserError(std::string("wait for the ") + JobKindName(*state_.kind) + " to finish");
   }
   cancel_ = false;
   state_ = {};
-  state_.name = name;
+  state_.kind = kind;
   state_.running = true;
   work_ = std::move(work);
   wake_.notify_all();

@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -12,9 +13,15 @@
 
 namespace recon::studio {
 
+/// The studio's long activities.
+enum class JobKind { kCalibration, kTraining, kRollouts };
+
+/// The activity as the studio's messages name it ("calibration", "training", "rollouts").
+const char* JobKindName(JobKind kind);
+
 /// What the studio shows of a long activity on the job thread.
 struct JobState {
-  std::string name;  ///< "calibration", "training", "rollouts"
+  std::optional<JobKind> kind;  ///< none before the first job
   bool running = false;
   int calibration_points = 0;
   std::vector<ui::TrainingView> training;
@@ -42,10 +49,10 @@ class JobThread {
   /// Running, queued, or finished but its result not yet taken (so the studio never looks idle
   /// between the two).
   bool Running() const;
-  /// The name of the job that is running or queued ("" if none).
-  std::string RunningName() const;
+  /// The job that is running or queued, if any.
+  std::optional<JobKind> RunningKind() const;
   /// Queues `work`; UserError if a job runs.
-  void Start(const std::string& name, Work work);
+  void Start(JobKind kind, Work work);
   void Cancel() { cancel_ = true; }
   const std::atomic<bool>* cancel_flag() const { return &cancel_; }
   /// Changes the state under the lock (progress reports from the job).

@@ -5,6 +5,7 @@
 
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
+#include "engine/store/session.h"
 #include "engine/teach/workflow.h"
 #include "engine/worlds/tabletop.h"
 
@@ -23,7 +24,7 @@ void RolloutPlayback::Reload() {
   methods_.clear();
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
     const fs::path path =
-        fs::path(session_dir_) / "rollouts" / (std::string(method) + ".replay.h5");
+        fs::path(session_dir_) / store::Session::RolloutReplayRelativePath(method);
     if (!fs::exists(path)) continue;
     methods_.emplace(method,
                      Method{store::RolloutReplayFile::Open(path.string()), {}, {}, -1, -1, 0});

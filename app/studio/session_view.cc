@@ -7,6 +7,8 @@
 #include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
 #include "engine/calib/calibration.h"
+#include "engine/store/rollout_summary.h"
+#include "engine/store/training_record.h"
 
 namespace recon::studio {
 
@@ -38,16 +40,11 @@ teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInput
   f.play_samples = static_cast<int>(session.PlaySamples());
   f.recording_demos = inputs.recording_demos;
   f.training = inputs.training;
-  const fs::path dir(session.dir());
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    if (fs::exists(dir / "checkpoints" / (std::string(method) + ".ckpt"))) {
-      f.trained_methods.push_back(method);
-    }
-    if (fs::exists(dir / "rollouts" / (std::string(method) + ".json"))) {
-      f.evaluated_methods.push_back(method);
-    }
+    if (fs::exists(session.CheckpointPath(method))) f.trained_methods.push_back(method);
+    if (fs::exists(session.RolloutSummaryPath(method))) f.evaluated_methods.push_back(method);
   }
-  f.report_written = fs::exists(dir / "report" / "report.html");
+  f.report_written = fs::exists(fs::path(session.dir()) / "report" / "report.html");
   return f;
 }
 
@@ -92,9 +89,9 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
                        true, 0.0, ""});
   s.devices.push_back(inputs.gamepad);
   s.teleop_choices = {
-      {"scripted", "Scripted", m.cell != "real", "a real cell has no scripted teacher"},
-      {"keyboard", "Keyboard", true, ""},
-      {"gamepad", "Gamepad", inputs.gamepad.connected, "no gamepad connected"}};
+      {ui::TeleopMode::kScripted, m.cell != "real", "a real cell has no scripted teacher"},
+      {ui::TeleopMode::kKeyboard, true, ""},
+      {ui::TeleopMode::kGamepad, inputs.gamepad.connected, "no gamepad connected"}};
   std::optional<calib::CalibrationReport> calibration;
   if (!m.calibration_file.empty()) {
     calibration = calib::LoadCalibration((fs::path(session.dir()) / m.calibration_file).string());
@@ -109,21 +106,19 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   s.play_samples = static_cast<int>(session.PlaySamples());
   s.teacher_seconds = cli::TeachingLedgerJson(session)["recon_play_total_s"].get<double>();
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    const auto r = cli::ReadJsonFile(
-        (fs::path(session.dir()) / "rollouts" / (std::string(method) + ".json")).string());
+    const std::optional<store::RolloutSummary> r = store::ReadRolloutSummary(session, method);
     if (!r) continue;
     ui::RolloutView view;
     view.method = method;
-    view.label = r->value("label", std::string(method));
-    view.metric_name = r->value("metric_name", std::string());
-    view.metric_mean = r->value("metric_mean", 0.0);
-    view.metric_sem = r->value("metric_sem", 0.0);
-    view.has_success = r->value("has_success", false);
-    view.success_rate = r->value("success_rate", 0.0);
-    view.tests = r->value("tests", 0);
-    const auto trained = cli::ReadJsonFile(
-        (fs::path(session.dir()) / "training" / (std::string(method) + ".json")).string());
-    view.out_of_date = cli::RolloutStaleness(session, *r, trained ? *trained : nlohmann::json());
+    view.label = r->label;
+    view.metric_name = r->metric_name;
+    view.metric_mean = r->metric_mean;
+    view.metric_sem = r->metric_sem;
+    view.has_success = r->has_success;
+    view.success_rate = r->success_rate;
+    view.tests = r->tests;
+    view.out_of_date =
+        cli::RolloutStaleness(session, *r, store::ReadTrainingRecord(session, method));
     s.rollouts.push_back(view);
   }
   return s;

@@ -43,7 +43,7 @@ void StudioCell::Start() {
   } else {
     source_ = std::make_unique<RealCellSource>(options_.cell_profile);
   }
-  if (!source_->HasScriptedTeacher()) teleop_mode_ = "keyboard";
+  if (!source_->HasScriptedTeacher()) teleop_mode_ = ui::TeleopMode::kKeyboard;
   if (options_.session_dir.empty()) {
     picking_session_ = true;
     status_ = "Open a session, or create one in a new folder.";
@@ -134,7 +134,7 @@ void StudioCell::Tick() {
   PollGamepad(now);
   if (recorder_ && recorder_->recording()) {
     // A person teleoperating needs the real control rate, whatever --fast says.
-    const bool paced = options_.real_time || teleop_mode_ != "scripted";
+    const bool paced = options_.real_time || teleop_mode_ != ui::TeleopMode::kScripted;
     if (!paced || now >= next_tick_) {
       next_tick_ = now + kControlPeriod;
       recorder_->Tick();
@@ -197,14 +197,14 @@ void StudioCell::ResetToNextScene() {
 void StudioCell::PollGamepad(Clock::time_point now) {
   if (gamepad_.Poll(now)) {
     Changed();
-    if (!gamepad_.connected() && teleop_mode_ == "gamepad") {
+    if (!gamepad_.connected() && teleop_mode_ == ui::TeleopMode::kGamepad) {
       // The teacher's hand is gone: stop the arm where it is.
       teleop_input_ = {};
       teleop_command_.velocity_m_s.setZero();
       AddError(gamepad_.error() + "; the arm holds still");
     }
   }
-  if (!gamepad_.connected() || teleop_mode_ != "gamepad" ||
+  if (!gamepad_.connected() || teleop_mode_ != ui::TeleopMode::kGamepad ||
       !(recorder_ && recorder_->recording())) {
     return;
   }
@@ -219,7 +219,9 @@ void StudioCell::PollGamepad(Clock::time_point now) {
 }
 
 teach::Teacher StudioCell::MakeTeacher() {
-  if (teleop_mode_ != "scripted") return source_->PersonTeacher(*world_, &teleop_command_);
+  if (teleop_mode_ != ui::TeleopMode::kScripted) {
+    return source_->PersonTeacher(*world_, &teleop_command_);
+  }
   if (!source_->HasScriptedTeacher()) {
     throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
   }
@@ -227,7 +229,16 @@ teach::Teacher StudioCell::MakeTeacher() {
 }
 
 std::string StudioCell::TeleopSource() const {
-  return teleop_mode_ == "scripted" ? "scripted-teleop" : teleop_mode_ + "-teleop";
+  // What the episode records as its source (EpisodeMeta::source): a stored value, not a label.
+  switch (teleop_mode_) {
+    case ui::TeleopMode::kScripted:
+      return "scripted-teleop";
+    case ui::TeleopMode::kKeyboard:
+      return "keyboard-teleop";
+    case ui::TeleopMode::kGamepad:
+      return "gamepad-teleop";
+  }
+  return "teleop";
 }
 
 void StudioCell::StartDemo(int number, uint64_t seed) {

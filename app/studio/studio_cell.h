@@ -141,7 +141,7 @@ class StudioCell {
   std::unique_ptr<worlds::World> world_;
   std::unique_ptr<teach::DemoRecorder> recorder_;
   std::optional<std::string> replace_;
-  std::string teleop_mode_ = "scripted";
+  ui::TeleopMode teleop_mode_ = ui::TeleopMode::kScripted;
   ui::TeleopInput teleop_input_;
   teach::TeleopCommand teleop_command_;
   std::unique_ptr<teach::PlayRecorder> play_;

@@ -28,15 +28,16 @@ void StudioCell::Apply(const ui::StartCalibration&) {
   const uint64_t seed = session_->manifest().seed;
   const int points = options_.calibration_points;
   const std::string dir = session_->dir();
-  jobs_.Start("calibration", [this, seed, points, dir](JobThread& jobs) -> std::function<void()> {
-    const std::string path = (fs::path(dir) / "calibration.new.json").string();
-    CalibrateCell(jobs, seed, points, path);
-    return [this, path] {
-      session_->AttachCalibration(path);
-      fs::remove(path);
-      status_ = "Calibrated.";
-    };
-  });
+  jobs_.Start(JobKind::kCalibration,
+              [this, seed, points, dir](JobThread& jobs) -> std::function<void()> {
+                const std::string path = (fs::path(dir) / "calibration.new.json").string();
+                CalibrateCell(jobs, seed, points, path);
+                return [this, path] {
+                  session_->AttachCalibration(path);
+                  fs::remove(path);
+                  status_ = "Calibrated.";
+                };
+              });
 }
 
 void StudioCell::Apply(const ui::CancelCalibration&) { jobs_.Cancel(); }
@@ -46,7 +47,7 @@ void StudioCell::Apply(const ui::StartRecording&) {
   RequireNoEmergencyStop("record");
   const int number = session_->NextDemoNumber();
   StartDemo(number, store::Session::ScenarioSeed(session_->manifest().seed, number, false));
-  status_ = teleop_mode_ == "scripted"
+  status_ = teleop_mode_ == ui::TeleopMode::kScripted
                 ? "Recording a demonstration (the scripted teacher)."
                 : "Recording a demonstration: drive the arm, Stop and keep when done.";
 }
@@ -107,13 +108,10 @@ void StudioCell::Apply(const ui::SetTeleopMode& c) {
   if (recorder_ && recorder_->recording()) {
     throw UserError("finish or discard the recording before changing the teleop");
   }
-  if (c.mode == "gamepad" && !gamepad_.connected()) {
+  if (c.mode == ui::TeleopMode::kGamepad && !gamepad_.connected()) {
     throw UserError("no gamepad connected (looked for " + gamepad_.Places() + ")");
   }
-  if (c.mode != "scripted" && c.mode != "keyboard" && c.mode != "gamepad") {
-    throw UserError("unknown teleop '" + c.mode + "' (scripted, keyboard, gamepad)");
-  }
-  if (c.mode == "scripted" && !source_->HasScriptedTeacher()) {
+  if (c.mode == ui::TeleopMode::kScripted && !source_->HasScriptedTeacher()) {
     throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
   }
   teleop_mode_ = c.mode;
@@ -147,13 +145,14 @@ void StudioCell::Apply(const ui::StartTraining& c) {
   training = cli::WithRecipeDefaults(*session_, training);
   training.seed = cli::DefaultTrainingSeed(*session_);
   const std::vector<std::string> methods = c.methods;
-  jobs_.Start("training", [this, training, methods](JobThread& jobs) -> std::function<void()> {
-    std::vector<ui::TrainingView> finished = TrainMethods(jobs, *session_, training, methods);
-    return [this, finished = std::move(finished)] {
-      last_training_ = finished;
-      status_ = "Trained.";
-    };
-  });
+  jobs_.Start(
+      JobKind::kTraining, [this, training, methods](JobThread& jobs) -> std::function<void()> {
+        std::vector<ui::TrainingView> finished = TrainMethods(jobs, *session_, training, methods);
+        return [this, finished = std::move(finished)] {
+          last_training_ = finished;
+          status_ = "Trained.";
+        };
+      });
 }
 
 void StudioCell::Apply(const ui::CancelTraining&) { jobs_.Cancel(); }
@@ -163,7 +162,7 @@ void StudioCell::Apply(const ui::RunRollouts& c) {
   RequireNoEmergencyStop("roll out");
   if (std::string why = source_->CannotRollOut(); !why.empty()) throw UserError(why);
   const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
-  jobs_.Start("rollouts", [this, tests](JobThread&) -> std::function<void()> {
+  jobs_.Start(JobKind::kRollouts, [this, tests](JobThread&) -> std::function<void()> {
     RollOutTrainedMethods(*session_, tests);
     return [this] {
       ReloadPlayback();

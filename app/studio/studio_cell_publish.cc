@@ -29,7 +29,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s.recent_sessions = recent_.entries();
   RenderView(s);
   const JobState job = jobs_.Peek();
-  s.calibration.running = job.running && job.name == "calibration";
+  s.calibration.running = job.running && job.kind == JobKind::kCalibration;
   s.calibration.points_collected = job.calibration_points;
   s.recording = recorder_ && recorder_->recording();
   s.recording_samples = recorder_ ? recorder_->samples() : 0;
@@ -46,19 +46,19 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   ShowDeviceHealth(s);
   ShowConnected(s);
   ShowSafety(s);
-  s.training = job.name == "training" ? job.training : last_training_;
-  s.rollouts_running = job.running && job.name == "rollouts";
+  s.training = job.kind == JobKind::kTraining ? job.training : last_training_;
+  s.rollouts_running = job.running && job.kind == JobKind::kRollouts;
   s.rollout_tests = options_.rollout_tests;
   ShowPlayback(s);
   s.report_path = report_path_;
   s.errors = errors_;
-  s.status = job.running ? "Running " + job.name + "..." : status_;
+  s.status = job.running ? std::string("Running ") + JobKindName(*job.kind) + "..." : status_;
 }
 
 void StudioCell::RebuildSessionView() {
   SessionViewInputs inputs;
   inputs.recording_demos = recorder_ && recorder_->recording();
-  inputs.training = jobs_.RunningName() == "training";
+  inputs.training = jobs_.RunningKind() == JobKind::kTraining;
   inputs.calibration_points = options_.calibration_points;
   inputs.gamepad = gamepad_.View();
   session_view_ = BuildSessionView(*session_, inputs);

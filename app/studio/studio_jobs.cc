@@ -82,7 +82,7 @@ std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session
 
 void RollOutTrainedMethods(const store::Session& session, int tests) {
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    if (fs::exists(fs::path(session.dir()) / "checkpoints" / (std::string(method) + ".ckpt"))) {
+    if (fs::exists(session.CheckpointPath(method))) {
       cli::EvaluateSessionMethod(session, method, tests, cli::DefaultTestSeed(session));
     }
   }

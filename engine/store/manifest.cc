@@ -8,84 +8,13 @@
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/store/json_fields.h"
 
 namespace recon::store {
 
 namespace {
 
 using json = nlohmann::json;
-
-/// Reads fields of one JSON object and names the field in every error, e.g.
-/// "session.json: field 'beacons[0].dim' must be an integer".
-class FieldReader {
- public:
-  FieldReader(const json& object, std::string source, std::string prefix)
-      : object_(object), source_(std::move(source)), prefix_(std::move(prefix)) {
-    if (!object_.is_object()) Fail(prefix_.empty() ? "(top level)" : prefix_, "must be an object");
-  }
-
-  const json& Required(const std::string& key) const {
-    if (!object_.contains(key)) Fail(Name(key), "is missing");
-    return object_.at(key);
-  }
-  std::string String(const std::string& key) const {
-    const json& value = Required(key);
-    if (!value.is_string()) Fail(Name(key), "must be a string");
-    return value.get<std::string>();
-  }
-  std::string OptionalString(const std::string& key, const std::string& fallback) const {
-    return object_.contains(key) ? String(key) : fallback;
-  }
-  int64_t Integer(const std::string& key) const {
-    const json& value = Required(key);
-    if (!value.is_number_integer()) Fail(Name(key), "must be an integer");
-    return value.get<int64_t>();
-  }
-  int64_t NonNegativeInteger(const std::string& key) const {
-    const int64_t value = Integer(key);
-    if (value < 0) Fail(Name(key), "must not be negative");
-    return value;
-  }
-  uint64_t Unsigned(const std::string& key) const {
-    const json& value = Required(key);
-    if (!value.is_number_unsigned()) Fail(Name(key), "must be a non-negative integer");
-    return value.get<uint64_t>();
-  }
-  double Number(const std::string& key) const {
-    const json& value = Required(key);
-    if (!value.is_number()) Fail(Name(key), "must be a number");
-    return value.get<double>();
-  }
-  double OptionalNumber(const std::string& key, double fallback) const {
-    return object_.contains(key) ? Number(key) : fallback;
-  }
-  bool Boolean(const std::string& key, bool fallback) const {
-    if (!object_.contains(key)) return fallback;
-    if (!object_.at(key).is_boolean()) Fail(Name(key), "must be true or false");
-    return object_.at(key).get<bool>();
-  }
-  const json& Array(const std::string& key) const {
-    const json& value = Required(key);
-    if (!value.is_array()) Fail(Name(key), "must be a list");
-    return value;
-  }
-  FieldReader Object(const std::string& key) const { return {Required(key), source_, Name(key)}; }
-  FieldReader Element(const json& element, const std::string& key, size_t index) const {
-    return {element, source_, Name(key) + "[" + std::to_string(index) + "]"};
-  }
-  std::string Name(const std::string& key) const {
-    return prefix_.empty() ? key : prefix_ + "." + key;
-  }
-  [[noreturn]] void Fail(const std::string& field, const std::string& problem) const {
-    throw UserError(source_ + ": field '" + field + "' " + problem);
-  }
-  const json& object() const { return object_; }
-
- private:
-  const json& object_;
-  std::string source_;
-  std::string prefix_;
-};
 
 json SpecToJson(const DataSpec& spec) {
   return {{"x_dim", spec.x_dim},

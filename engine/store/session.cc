@@ -206,8 +206,8 @@ Session Session::Open(const std::string& dir, Access access) {
   session.Scan();
   if (access == Access::kReadWrite) {
     // Killed writers of checkpoints, training records, rollouts and reports left temporaries.
-    for (const char* folder :
-         {"", "checkpoints", "training", "rollouts", "report", "report/figures", kTrashFolder}) {
+    for (const char* folder : {"", kCheckpointFolder, kTrainingFolder, kRolloutFolder, "report",
+                               "report/figures", kTrashFolder}) {
       session.recovered_temporaries_ += RemoveDeadTemporariesIn(session.Path(folder));
     }
   }

@@ -122,6 +122,24 @@ class Session {
   /// changed since (an episode recorded, deleted, marked bad or moved between splits).
   std::vector<std::string> DatasetEpisodeNames(const DatasetOptions& options = {}) const;
 
+  /// Where a method's ("baseline", "recon") results live: its model, what training it recorded
+  /// (training_record.h), the summary of its rollouts (rollout_summary.h) and their step-by-step
+  /// replay (rollout_replay.h). Every reader and writer of these files asks here.
+  std::string CheckpointPath(const std::string& method) const;
+  std::string TrainingRecordPath(const std::string& method) const;
+  std::string RolloutSummaryPath(const std::string& method) const;
+  std::string RolloutReplayPath(const std::string& method) const;
+  /// The same files relative to the session folder, as the records name them
+  /// ("checkpoints/recon.ckpt").
+  static std::string CheckpointRelativePath(const std::string& method);
+  static std::string TrainingRecordRelativePath(const std::string& method);
+  static std::string RolloutSummaryRelativePath(const std::string& method);
+  static std::string RolloutReplayRelativePath(const std::string& method);
+  /// The folders holding them.
+  static constexpr char kCheckpointFolder[] = "checkpoints";
+  static constexpr char kTrainingFolder[] = "training";
+  static constexpr char kRolloutFolder[] = "rollouts";
+
   /// Rebuilds session.hdf5 (atomically).
   void RebuildIndex() const;
   /// While deferred, commits skip rebuilding session.hdf5 (which lists every episode, so

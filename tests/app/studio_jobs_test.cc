@@ -85,7 +85,7 @@ TEST(StudioJobsTest, AJobCountsAsRunningUntilItsResultOrErrorIsTaken) {
   for (const bool fails : {false, true}) {
     SCOPED_TRACE(fails ? "a job that fails" : "a job that succeeds");
     std::atomic<bool> release{false};
-    jobs.Start("training", [&](JobThread&) -> std::function<void()> {
+    jobs.Start(JobKind::kTraining, [&](JobThread&) -> std::function<void()> {
       while (!release) std::this_thread::sleep_for(std::chrono::milliseconds(1));
       if (fails) throw UserError("No space left on device");
       return [] {};

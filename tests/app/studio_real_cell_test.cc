@@ -120,15 +120,15 @@ TEST_F(StudioRealCellTest, TeachesADemonstrationOnTheRealDevicesAndTheEStopReach
   EXPECT_NEAR(s.beacons[0].reading[1], 0.5, 1e-6);
   // A real cell has no scripted teacher.
   for (const ui::TeleopChoice& c : s.teleop_choices) {
-    if (c.mode == "scripted") {
+    if (c.mode == ui::TeleopMode::kScripted) {
       EXPECT_FALSE(c.available);
     }
   }
-  EXPECT_EQ(s.teleop, "keyboard");
-  controller.Push(ui::SetTeleopMode{"scripted"});
+  EXPECT_EQ(s.teleop, ui::TeleopMode::kKeyboard);
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kScripted});
   s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
   EXPECT_THAT(s.errors.back(), HasSubstr("a real cell has no scripted teacher"));
-  EXPECT_EQ(s.teleop, "keyboard");
+  EXPECT_EQ(s.teleop, ui::TeleopMode::kKeyboard);
 
   controller.Push(ui::AssignBeacon{"plate", "plate"});
   controller.Push(ui::StartRecording{});

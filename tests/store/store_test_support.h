@@ -5,7 +5,9 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 #include "engine/core/error.h"
@@ -44,6 +46,20 @@ inline std::string ErrorOf(const std::function<void()>& f) {
     return e.what();
   }
   return "(no error)";
+}
+
+/// The file's bytes ("" if it cannot be read).
+inline std::string Bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Writes `text` as the whole of `path`, making its folder if needed.
+inline void WriteText(const std::string& path, const std::string& text) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream(path, std::ios::binary) << text;
 }
 
 /// x 2, y 3x4x5 image, beacons "red" (2) and "dist" (1), u 2.

@@ -205,7 +205,7 @@ TEST(StudioCommandTest, TheTeleopIsChosenOnTheRecordScreenAndAMissingGamepadSays
   std::vector<StudioCommand> commands = harness.Commands();
   ASSERT_EQ(commands.size(), 1u);
   ASSERT_TRUE(std::holds_alternative<SetTeleopMode>(commands[0]));
-  EXPECT_EQ(std::get<SetTeleopMode>(commands[0]).mode, "keyboard");
+  EXPECT_EQ(std::get<SetTeleopMode>(commands[0]).mode, TeleopMode::kKeyboard);
   try {
     harness.driver().Click("[ ] Gamepad##teleop");
     FAIL() << "the gamepad is not connected; its button must be disabled";
@@ -275,7 +275,7 @@ namespace {
 TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
   StudioHarness harness;
   StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
-  s.teleop = "keyboard";
+  s.teleop = TeleopMode::kKeyboard;
   s.recording = true;
   harness.Show(s);
   harness.driver().RunScript("hold right 0.05\nhold pageup 0.05\npress space\npress enter\n");
@@ -295,7 +295,7 @@ TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
   EXPECT_TRUE(stop) << "enter";
   // The same keys with the scripted teacher recording send nothing: while a demonstration
   // records, the arrows do not move the keyboard focus to a button that Space would then press.
-  s.teleop = "scripted";
+  s.teleop = TeleopMode::kScripted;
   harness.Show(s);
   harness.Commands();
   harness.driver().RunScript("hold right 0.05\npress space\n");

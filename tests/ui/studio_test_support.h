@@ -115,10 +115,10 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
                                 0.035, 0.024, 0.019, 0.023, 0.039, 0.006};
     s.calibration.inlier.assign(12, true);
   }
-  s.teleop = "scripted";
-  s.teleop_choices = {{"scripted", "Scripted", true, ""},
-                      {"keyboard", "Keyboard", true, ""},
-                      {"gamepad", "Gamepad", false, "no gamepad connected"}};
+  s.teleop = TeleopMode::kScripted;
+  s.teleop_choices = {{TeleopMode::kScripted, true, ""},
+                      {TeleopMode::kKeyboard, true, ""},
+                      {TeleopMode::kGamepad, false, "no gamepad connected"}};
   s.grip_m = {0.33f, 0.0f, 0.25f};
   s.recent_sessions = {"/home/lab/sessions/toast", "/home/lab/sessions/cups"};
   if (p >= 4) {

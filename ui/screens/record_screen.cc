@@ -18,7 +18,7 @@ bool KeyPressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(ke
 /// keeps the demonstration. Sends the controller a TeleopInput when the keys change.
 void ReadTeleopKeys(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
-  if (!s.recording || s.teleop != "keyboard" || ImGui::GetIO().WantTextInput) return;
+  if (!s.recording || s.teleop != TeleopMode::kKeyboard || ImGui::GetIO().WantTextInput) return;
   TeleopInput input;
   input.screen_right =
       static_cast<float>(KeyDown(ImGuiKey_RightArrow) - KeyDown(ImGuiKey_LeftArrow));
@@ -37,19 +37,21 @@ void DrawTeleopChoice(const ScreenContext& context) {
   for (const TeleopChoice& choice : s.teleop_choices) {
     ImGui::SameLine();
     const bool enabled = choice.available && !s.recording;
-    const std::string label = (choice.mode == s.teleop ? "[x] " : "[ ] ") + choice.label;
+    const std::string label =
+        (choice.mode == s.teleop ? "[x] " : "[ ] ") + std::string(TeleopModeLabel(choice.mode));
     if (Button((label + "##teleop").c_str(), enabled,
                choice.available ? "finish the recording first" : choice.why_not)) {
       context.commands.Push(SetTeleopMode{choice.mode});
     }
   }
-  const char* help =
-      s.teleop == "keyboard" ? "Arrows move the arm as on screen, Page Up/Down raise and lower it, "
-                               "Space opens or closes the gripper, Enter keeps the demonstration."
-      : s.teleop == "gamepad" ? "The left stick moves the arm as on screen, the right stick raises "
-                                "and lowers it, A opens or closes the gripper, Start keeps the "
-                                "demonstration."
-                              : nullptr;
+  const char* help = s.teleop == TeleopMode::kKeyboard
+                         ? "Arrows move the arm as on screen, Page Up/Down raise and lower it, "
+                           "Space opens or closes the gripper, Enter keeps the demonstration."
+                     : s.teleop == TeleopMode::kGamepad
+                         ? "The left stick moves the arm as on screen, the right stick raises "
+                           "and lowers it, A opens or closes the gripper, Start keeps the "
+                           "demonstration."
+                         : nullptr;
   if (help != nullptr) {
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kCameraWidth);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/teach/workflow.h"
+#include "ui/studio/teleop_mode.h"
 
 namespace recon::ui {
 
@@ -54,10 +55,9 @@ struct ShowRolloutFrame {
 };
 struct WriteReport {};
 struct DismissErrors {};
-/// The teleop that drives the next demonstration: "scripted" (the simulated teacher), "keyboard"
-/// or "gamepad".
+/// The teleop that drives the next demonstration.
 struct SetTeleopMode {
-  std::string mode;
+  TeleopMode mode = TeleopMode::kScripted;
 };
 /// What the teacher's keys (or sticks) ask for now, relative to the camera view as they see it:
 /// each axis -1..1. The controller turns it into a velocity of the grip point in the table frame.

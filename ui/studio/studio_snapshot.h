@@ -9,6 +9,7 @@
 #include "engine/core/image.h"
 #include "engine/teach/workflow.h"
 #include "ui/studio/studio_commands.h"
+#include "ui/studio/teleop_mode.h"
 
 namespace recon::ui {
 
@@ -66,8 +67,7 @@ struct BeaconView {
 
 /// A teleop the Record screen offers, and whether it can be used now.
 struct TeleopChoice {
-  std::string mode;   ///< "scripted", "keyboard", "gamepad"
-  std::string label;  ///< "Scripted teacher", "Keyboard", "Gamepad"
+  TeleopMode mode = TeleopMode::kScripted;
   bool available = true;
   std::string why_not;  ///< e.g. "no gamepad connected"
 };
@@ -162,7 +162,7 @@ struct StudioSnapshot {
   // Recording.
   bool recording = false;
   int recording_samples = 0;
-  std::string teleop = "scripted";  ///< the mode: "scripted", "keyboard", "gamepad"
+  TeleopMode teleop = TeleopMode::kScripted;
   std::vector<TeleopChoice> teleop_choices;
   TeleopInput teleop_input;       ///< what the keys ask for now (the Record screen sends changes)
   std::array<float, 3> grip_m{};  ///< the arm's grip point in the table frame

@@ -1,0 +1,42 @@
+// Where a session keeps what was made from its episodes, one file of each kind per method: the
+// model, its training record, its rollouts' summary and their replay.
+
+#include <filesystem>
+
+#include "engine/store/session.h"
+
+namespace recon::store {
+
+std::string Session::CheckpointRelativePath(const std::string& method) {
+  return (std::filesystem::path(kCheckpointFolder) / (method + ".ckpt")).string();
+}
+
+std::string Session::TrainingRecordRelativePath(const std::string& method) {
+  return (std::filesystem::path(kTrainingFolder) / (method + ".json")).string();
+}
+
+std::string Session::RolloutSummaryRelativePath(const std::string& method) {
+  return (std::filesystem::path(kRolloutFolder) / (method + ".json")).string();
+}
+
+std::string Session::RolloutReplayRelativePath(const std::string& method) {
+  return (std::filesystem::path(kRolloutFolder) / (method + ".replay.h5")).string();
+}
+
+std::string Session::CheckpointPath(const std::string& method) const {
+  return Path(CheckpointRelativePath(method));
+}
+
+std::string Session::TrainingRecordPath(const std::string& method) const {
+  return Path(TrainingRecordRelativePath(method));
+}
+
+std::string Session::RolloutSummaryPath(const std::string& method) const {
+  return Path(RolloutSummaryRelativePath(method));
+}
+
+std::string Session::RolloutReplayPath(const std::string& method) const {
+  return Path(RolloutReplayRelativePath(method));
+}
+
+}  // namespace recon::store
