@@ -502,7 +502,7 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
     command
         ->add_option("--demo-noise", flags->demo_noise,
                      "noise injected into the executed joint velocities while demonstrating "
-                     "(DART), rad/s; 0 = off (default: 0.05)")
+                     "(DART), rad/s; 0 = off (the default)")
         ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
     command
         ->add_option("--observation", flags->observation,

@@ -210,8 +210,7 @@ void AddRecordCommand(CLI::App& app) {
   record
       ->add_option("--demo-noise", flags->demo_noise,
                    "noise injected into the executed joint velocities while demonstrating, for a "
-                   "new session (DART; rad/s; 0 = off; default: 0.05 on the tabletop, 0 "
-                   "elsewhere)")
+                   "new session (DART; rad/s; 0 = off, the default)")
       ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
   record->add_option("--layout", flags->layout,
                      "scene layout of a new tabletop session: paper (default: the plate at one "

@@ -31,7 +31,7 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
       ->check(NumberBetween(0, kMaxBeaconNoise_m));
   app.add_option("--demo-noise", flags.options.demo_noise_sigma,
                  "noise injected into the executed joint velocities while demonstrating in a new "
-                 "session (DART, rad/s; 0 = off; default: 0.05 on the tabletop)")
+                 "session (DART, rad/s; 0 = off, the default)")
       ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
   app.add_flag("--headless", flags.headless, "render through EGL without a window");
   app.add_option("--cell", flags.options.cell_profile,

@@ -34,8 +34,8 @@ std::string ChooseLayout(const std::string& world, const std::string& asked,
 double DefaultBeaconNoise(const std::string& world);
 
 /// The noise injected into executed actions while demonstrating (worlds::DemoNoise) that a new
-/// session or experiment of `world` uses unless told otherwise: 0.05 rad/s on the tabletop
-/// (docs/results.md measures it), 0 (off) elsewhere.
+/// session or experiment of `world` uses unless told otherwise: 0 (off) in every world;
+/// `--demo-noise` turns it on (docs/results.md measures both).
 double DefaultDemoNoise(const std::string& world);
 
 /// Names MakeWorld accepts: "dynamic2d" (image observations), "dynamic2d-state" (the 14-vector

@@ -136,7 +136,8 @@ TEST(CellCliTest, TabletopExperimentReportsSuccessDistanceAndTeachingTime) {
   }
   // The protocol and the recipe's levers are in the summary, so a run can be repeated.
   EXPECT_EQ(summary["protocol"]["layout"], "paper");
-  EXPECT_DOUBLE_EQ(summary["protocol"]["demo_noise"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(summary["protocol"]["demo_noise"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(summary["train"]["nll_min_std"].get<double>(), 0.1);
   EXPECT_DOUBLE_EQ(summary["protocol"]["beacon_noise"]["recon-play"].get<double>(), 0.07);
   EXPECT_EQ(summary["network"]["action_chunk"], 10);
   EXPECT_EQ(summary["train"]["random_shift_px"], 4);

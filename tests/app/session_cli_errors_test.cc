@@ -163,7 +163,7 @@ TEST_F(SessionCliTest, TabletopProtocolMismatchesAreRefusedAndChangeNothing) {
   const json manifest = ReadJson(session / "session.json");
   EXPECT_EQ(manifest["cell"]["layout"], "paper");
   EXPECT_DOUBLE_EQ(manifest["cell"]["beacon_noise_sigma"].get<double>(), 0.07);
-  EXPECT_DOUBLE_EQ(manifest["cell"]["demo_noise_sigma"].get<double>(), 0.05);
+  EXPECT_DOUBLE_EQ(manifest["cell"]["demo_noise_sigma"].get<double>(), 0.0);
   const std::string before = ReadBytes(session / "session.json");
   const auto demo_bytes = ReadBytes(session / "episodes" / "demo_1.h5");
 
@@ -176,7 +176,7 @@ TEST_F(SessionCliTest, TabletopProtocolMismatchesAreRefusedAndChangeNothing) {
        "--demos 3: the tabletop paper layout records 2 demonstrations per "
        "configuration"},
       {"--noise 0.02 --demos 2", "--noise is fixed when a session is created"},
-      {"--demo-noise 0 --demos 2", "--demo-noise is fixed when a session is created"},
+      {"--demo-noise 0.05 --demos 2", "--demo-noise is fixed when a session is created"},
   };
   for (const auto& c : cases) {
     r = Record(session, c.args);
