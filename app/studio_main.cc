@@ -5,15 +5,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
 #include "app/studio/studio_options.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/malloc_tuning.h"
 #include "engine/report/image_png.h"
 #include "ui/platform/desktop_window.h"
@@ -27,11 +26,9 @@ namespace {
 using recon::studio::StudioFlags;
 
 std::string ReadScript(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw recon::UserError("cannot read the script " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = recon::ReadWholeFile(path);
+  if (!text) throw recon::UserError("cannot read the script " + path);
+  return *text;
 }
 
 /// The display a desktop window would open on, or empty when there is none.

@@ -2,9 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "engine/core/files.h"
 
@@ -22,12 +20,10 @@ std::string RecentSessions::DefaultPath() {
 }
 
 RecentSessions::RecentSessions(std::string path) : path_(std::move(path)) {
-  std::ifstream in(path_);
-  if (!in) return;
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::optional<std::string> text = ReadWholeFile(path_);
+  if (!text) return;
   try {
-    const nlohmann::json j = nlohmann::json::parse(text.str());
+    const nlohmann::json j = nlohmann::json::parse(*text);
     if (!j.is_object() || !j.contains("sessions") || !j["sessions"].is_array()) {
       throw std::runtime_error("it has no \"sessions\" list");
     }

@@ -219,13 +219,9 @@ void StudioCell::PollGamepad(Clock::time_point now) {
 }
 
 teach::Teacher StudioCell::MakeTeacher() {
-  if (teleop_mode_ != ui::TeleopMode::kScripted) {
-    return source_->PersonTeacher(*world_, &teleop_command_);
-  }
-  if (!source_->HasScriptedTeacher()) {
-    throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
-  }
-  return teach::ScriptedTeacher;
+  // Scripted only where the cell has the scripted teacher: Start and SetTeleopMode see to it.
+  if (teleop_mode_ == ui::TeleopMode::kScripted) return teach::ScriptedTeacher;
+  return source_->PersonTeacher(*world_, &teleop_command_);
 }
 
 std::string StudioCell::TeleopSource() const {

@@ -1,9 +1,7 @@
 #include "devices/camera/camera_calibration_file.h"
 
 #include <filesystem>
-#include <fstream>
 #include <opencv2/core.hpp>
-#include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -104,11 +102,9 @@ CameraCalibration ReadCameraCalibration(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw UserError("cannot read the camera calibration " + path + ": no such file");
   }
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) throw UserError("cannot read the camera calibration " + path);
-  std::string content = text.str();
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError("cannot read the camera calibration " + path);
+  std::string content = *text;
   const size_t first = content.find_first_not_of(" \t\r\n");
   if (first == std::string::npos) throw UserError(path + ": empty file, not a camera calibration");
   // OpenCV's YAML parser insists on the "%YAML" directive that cv::FileStorage writes; ROS and

@@ -2,12 +2,11 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace recon::cell {
 
@@ -180,13 +179,11 @@ Eigen::Isometry3d ReadBase(const Fields& top) {
 }  // namespace
 
 CellProfile ReadCellProfile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot read the cell profile (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError(path + ": cannot read the cell profile (missing or unreadable)");
   json root;
   try {
-    root = json::parse(text.str());
+    root = json::parse(*text);
   } catch (const json::parse_error& e) {
     throw UserError(path + ": not valid JSON (" + e.what() + ")");
   }

@@ -10,12 +10,22 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "engine/core/error.h"
 
 namespace recon {
 
 namespace fs = std::filesystem;
+
+std::optional<std::string> ReadWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
 
 std::string TemporarySibling(const std::string& path) {
   return path + ".tmp." + std::to_string(getpid());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace recon {
@@ -13,6 +14,10 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 /// that are themselves temporaries. On failure the part written is removed and a UserError says
 /// "cannot write <path>: <the system's reason>".
 void WriteWholeFile(const std::string& path, const std::string& content);
+
+/// The whole content of the file at `path`, byte for byte; nullopt when it cannot be opened
+/// (missing or unreadable), so that each caller names what the file was for.
+std::optional<std::string> ReadWholeFile(const std::string& path);
 
 /// Creates `dir` (and parents) if needed and checks that a file can be created in it. Throws
 /// UserError naming the folder otherwise. Call before long work so it fails fast.

@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/report/html.h"
 
 namespace recon::report {
@@ -290,11 +289,9 @@ std::string FigureFiles::Embed(const std::string& path, const std::string& title
                                const std::string& caption_html) {
   written_.push_back(path);
   const std::string file = "figures/" + fs::path(path).filename().string();
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (!in) throw UserError("cannot read back the figure " + path);
-  return "<figure><img src=\"" + PngDataUri(bytes.str()) + "\" width=\"" + std::to_string(kWidth) +
+  const std::optional<std::string> bytes = ReadWholeFile(path);
+  if (!bytes) throw UserError("cannot read back the figure " + path);
+  return "<figure><img src=\"" + PngDataUri(*bytes) + "\" width=\"" + std::to_string(kWidth) +
          "\" height=\"" + std::to_string(kHeight) + "\" alt=\"" + EscapeHtml(title) +
          "\" data-file=\"" + EscapeHtml(file) + "\">\n<figcaption>" + caption_html +
          "</figcaption></figure>\n";

@@ -2,8 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -161,12 +159,10 @@ void FieldReader::Fail(const std::string& field, const std::string& problem) con
 }
 
 std::optional<json> ReadJsonFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) return std::nullopt;
   try {
-    return json::parse(text.str());
+    return json::parse(*text);
   } catch (const json::parse_error& e) {
     throw UserError(path + ": not valid JSON (" + e.what() + ")");
   }

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -188,11 +186,9 @@ SessionManifest ManifestFromJson(const std::string& text, const std::string& sou
 }
 
 SessionManifest LoadManifest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot read the session manifest (missing or unreadable)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ManifestFromJson(text.str(), path);
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError(path + ": cannot read the session manifest (missing or unreadable)");
+  return ManifestFromJson(*text, path);
 }
 
 void SaveManifest(const SessionManifest& manifest, const std::string& path) {

@@ -9,9 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <tuple>
 
 #include "engine/calib/calibration.h"
@@ -66,11 +64,9 @@ int CountEpisodeFiles(const std::string& dir) {
 }
 
 std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError("cannot read " + path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError("cannot read " + path);
+  return *text;
 }
 
 // An episode file that cannot be opened or disagrees with the manifest is listed, not fatal:
