@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
@@ -92,10 +93,17 @@ void Run(StudioFlags flags) {
   recon::ui::StudioTextures textures;
   recon::ui::CommandQueue commands;
   recon::ui::StudioSnapshot snapshot;
+  bool quit = false;  // Session > Quit: the window closes as with its close button
   const auto draw = [&] {
     snapshot = controller.Snapshot();
     recon::ui::DrawStudio(snapshot, commands, textures);
-    for (recon::ui::StudioCommand& command : commands.Drain()) controller.Push(std::move(command));
+    for (recon::ui::StudioCommand& command : commands.Drain()) {
+      if (std::holds_alternative<recon::ui::Quit>(command)) {
+        quit = true;
+      } else {
+        controller.Push(std::move(command));
+      }
+    }
   };
   if (desktop != nullptr) {
     const auto frame = [&] {
@@ -103,13 +111,15 @@ void Run(StudioFlags flags) {
       recon::ui::WidgetRegistry::ForThisThread().BeginFrame();
       draw();
     };
-    while ((!flags.frames_given || desktop->frames() < flags.frames) && desktop->Frame(frame)) {
+    while (!quit && (!flags.frames_given || desktop->frames() < flags.frames) &&
+           desktop->Frame(frame)) {
     }
     if (!flags.screenshot.empty()) WriteScreenshot(desktop->Screenshot(), flags.screenshot);
   } else {
     recon::ui::UiDriver driver(*window, draw);
     driver.SetIdleCheck([&] { return controller.Idle(); });
     driver.SetSettledCheck([&] { return controller.Settled(); });
+    driver.SetQuitCheck([&] { return quit; });
     if (!flags.screenshots.empty()) {
       fs::create_directories(flags.screenshots);
       driver.SetScreenshotDir(flags.screenshots);

@@ -382,7 +382,7 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command
       ->add_option("--steps", flags->steps,
                    "training steps with beacons (default: the world's recipe: 6001, the "
-                   "authors'; tabletop 15000)")
+                   "authors'; tabletop 7500, tabletop-state 15000)")
       ->check(WholeBetween(1, kMaxSteps));
   command->add_option("--baseline-steps", flags->baseline_steps, "training steps of the Baseline")
       ->check(WholeBetween(1, kMaxSteps))

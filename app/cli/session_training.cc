@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <system_error>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/parallel_for.h"
 #include "engine/core/rng.h"
 #include "engine/core/stats.h"
 #include "engine/experiments/evaluation.h"
@@ -144,8 +148,9 @@ store::TrainingRecord TrainSessionMethod(
   });
   const learn::TrainResult result = trainer.Train(cancel);
   if (result.cancelled) {
-    throw UserError("training " + Label(method, play) + " was cancelled at step " +
-                    std::to_string(result.steps_run) + "; nothing was saved");
+    throw TrainingCancelled("training " + Label(method, play) + " was cancelled at step " +
+                                std::to_string(result.steps_run) + "; nothing was saved",
+                            result.steps_run);
   }
 
   const std::string checkpoint = session.CheckpointPath(method);
@@ -191,7 +196,8 @@ store::TrainingRecord TrainSessionMethod(
 
 store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
                                             const std::string& method, int tests, uint64_t seed,
-                                            bool keep_replay) {
+                                            bool keep_replay,
+                                            const experiments::EvaluationHooks& hooks) {
   const store::SessionManifest& m = session.manifest();
   learn::ParseMethod(method);
   const std::string checkpoint = session.CheckpointPath(method);
@@ -209,7 +215,7 @@ store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
   const learn::Policy policy = learn::LoadPolicy(checkpoint);
   const auto start = std::chrono::steady_clock::now();
   std::vector<experiments::ScenarioOutcome> outcomes =
-      experiments::EvaluatePolicy(make_world, policy, seeds, keep_replay);
+      experiments::EvaluatePolicy(make_world, policy, seeds, keep_replay, hooks);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<double> metrics = experiments::Metrics(outcomes);
@@ -260,6 +266,34 @@ store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
   summary.seconds = seconds;
   store::WriteRolloutSummary(session.RolloutSummaryPath(method), summary);
   return summary;
+}
+
+std::vector<store::RolloutSummary> EvaluateSessionMethods(
+    const store::Session& session, const std::vector<std::string>& methods, int tests,
+    uint64_t seed, const std::function<void(const store::RolloutSummary&)>& on_done,
+    const std::function<void(size_t method, int done, int steps)>& on_step,
+    const std::atomic<bool>* cancel) {
+  std::vector<store::RolloutSummary> summaries(methods.size());
+  std::vector<std::exception_ptr> errors(methods.size());
+  std::mutex done_mutex;
+  ParallelFor(methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
+    try {
+      experiments::EvaluationHooks hooks;
+      hooks.cancel = cancel;
+      if (on_step) hooks.on_step = [&, i](int done, int steps) { on_step(i, done, steps); };
+      summaries[i] = EvaluateSessionMethod(session, methods[i], tests, seed, true, hooks);
+      if (on_done) {
+        std::lock_guard<std::mutex> lock(done_mutex);
+        on_done(summaries[i]);
+      }
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return summaries;
 }
 
 uint64_t DefaultTrainingSeed(const store::Session& session) {

@@ -5,6 +5,8 @@
 #include <functional>
 #include <string>
 
+#include "engine/core/error.h"
+#include "engine/experiments/evaluation.h"
 #include "engine/learn/learner.h"
 #include "engine/store/rollout_summary.h"
 #include "engine/store/session.h"
@@ -38,10 +40,21 @@ struct TrainingProgress {
 SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
                                           SessionTrainingOptions options);
 
+/// A training stopped because it was asked to: nothing of it was saved. `step` is where it
+/// stopped.
+class TrainingCancelled : public UserError {
+ public:
+  TrainingCancelled(const std::string& message, int step) : UserError(message), step_(step) {}
+  int step() const { return step_; }
+
+ private:
+  int step_;
+};
+
 /// Trains `method` ("baseline" or "recon") on the session's training split, then writes its
 /// checkpoint and its training record (recipe, seed, final losses, train and validation action
 /// MSE, loss curve) and returns that record. `on_progress` is called from the
-/// calling thread about 200 times. Stops when *cancel becomes true and throws UserError
+/// calling thread about 200 times. Stops when *cancel becomes true and throws TrainingCancelled
 /// (nothing is written). UserError when the session has nothing to train on.
 store::TrainingRecord TrainSessionMethod(
     const store::Session& session, const std::string& method, const SessionTrainingOptions& options,
@@ -53,10 +66,27 @@ store::TrainingRecord TrainSessionMethod(
 /// returns it. When the world has a replay (World::ReplayState) and `keep_replay`, also writes
 /// every step's state to the method's replay file (store/rollout_replay.h), before the summary,
 /// which names it; otherwise an older replay file of the method is removed. UserError without a
-/// checkpoint or a simulated world.
+/// checkpoint or a simulated world. `hooks` show progress or stop the rollouts
+/// (experiments::EvaluationCancelled; nothing is written then).
 store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
                                             const std::string& method, int tests, uint64_t seed,
-                                            bool keep_replay = true);
+                                            bool keep_replay = true,
+                                            const experiments::EvaluationHooks& hooks = {});
+
+/// EvaluateSessionMethod for each of `methods`, side by side, one core each (a rollout batch
+/// runs on one thread, and its outcome does not depend on what else runs), so on 2 cores two
+/// methods take the slower one's time. `on_done(summary)` is called once per method as it
+/// finishes, from that method's thread, one call at a time. Returns the summaries in the order of
+/// `methods`. A method that fails does not stop the others (each keeps what it wrote); then the
+/// first failure, in the order of `methods`, is rethrown. `on_step(i, done, steps)` reports
+/// method i's progress, from its thread (calls for different methods may overlap); `cancel`
+/// stops them all (experiments::EvaluationCancelled; a method that had finished keeps its
+/// files).
+std::vector<store::RolloutSummary> EvaluateSessionMethods(
+    const store::Session& session, const std::vector<std::string>& methods, int tests,
+    uint64_t seed, const std::function<void(const store::RolloutSummary&)>& on_done = {},
+    const std::function<void(size_t method, int done, int steps)>& on_step = {},
+    const std::atomic<bool>* cancel = nullptr);
 
 /// The seeds a session trains and tests with unless told otherwise (derived from its own).
 uint64_t DefaultTrainingSeed(const store::Session& session);

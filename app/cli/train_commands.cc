@@ -176,20 +176,25 @@ void RunEval(const EvalFlags& flags) {
       "(seeds derived from %llu)\n",
       methods.size(), flags.tests, m.world.c_str(), static_cast<unsigned long long>(seed));
   std::fflush(stdout);
+  // The methods roll out side by side, one core each (as they train); each line is printed in
+  // the order of --methods once all are done.
   ProgressLine progress("rolling out", static_cast<int64_t>(methods.size()));
-  for (const std::string& method : methods) {
-    const store::RolloutSummary r = EvaluateSessionMethod(session, method, flags.tests, seed);
-    progress.Advance(1, r.label);
+  const std::vector<store::RolloutSummary> summaries =
+      EvaluateSessionMethods(session, methods, flags.tests, seed,
+                             [&](const store::RolloutSummary& r) { progress.Advance(1, r.label); });
+  progress.Finish();
+  for (size_t i = 0; i < methods.size(); ++i) {
+    const std::string& method = methods[i];
+    const store::RolloutSummary& r = summaries[i];
     const std::string success =
         r.has_success
             ? "  success " + std::to_string(static_cast<int>(std::lround(100 * r.success_rate))) +
                   "%"
             : "";
-    std::printf("\n%-14s %s %.4g ± %.2g%s  (%.1f s; wrote %s/%s)\n", r.label.c_str(),
+    std::printf("%-14s %s %.4g ± %.2g%s  (%.1f s; wrote %s/%s)\n", r.label.c_str(),
                 r.metric_key.c_str(), r.metric_mean, r.metric_sem, success.c_str(), r.seconds,
                 flags.session.c_str(), store::Session::RolloutSummaryRelativePath(method).c_str());
   }
-  progress.Finish();
 }
 
 }  // namespace
@@ -203,8 +208,8 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str();
   train
       ->add_option("--steps", flags->steps,
-                   "training steps (default: the world's recipe: 15000 on the tabletop, 6001 "
-                   "elsewhere)")
+                   "training steps (default: the world's recipe: 7500 on the tabletop, 15000 on "
+                   "tabletop-state, 6001 elsewhere)")
       ->check(WholeBetween(1, kMaxSteps));
   train->add_option("--batch", flags->batch, "batch size")
       ->check(WholeBetween(1, kMaxBatch))

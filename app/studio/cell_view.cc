@@ -44,7 +44,6 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
     ui::BeaconView view = BeaconViewOf(b, manifest, reading);
     view.pixel = pixel(world.BeaconPosition());
     view.rate_hz = 1.0 / world.StepSeconds();
-    view.noise_m = manifest.beacon_noise_sigma;
     s.beacons.push_back(view);
   }
 }

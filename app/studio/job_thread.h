@@ -25,6 +25,8 @@ struct JobState {
   bool running = false;
   int calibration_points = 0;
   std::vector<ui::TrainingView> training;
+  /// The rollouts' steps done and to do, summed over the methods rolling out.
+  int rollout_steps_done = 0, rollout_steps_total = 0;
   std::string error;
   std::function<void()> finish;  ///< run on the cell thread when the job is over
 };

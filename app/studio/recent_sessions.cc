@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <system_error>
 
 #include "engine/core/files.h"
 
@@ -38,6 +39,17 @@ RecentSessions::RecentSessions(std::string path) : path_(std::move(path)) {
     problem_ = "the list of recent sessions " + path_ + " is unreadable (" + e.what() +
                "); it was moved to " + path_ + ".corrupt and a new list is started";
   }
+}
+
+std::vector<std::string> RecentSessions::Openable() const {
+  std::vector<std::string> openable;
+  for (const std::string& dir : entries_) {
+    std::error_code error;
+    if (std::filesystem::is_regular_file(std::filesystem::path(dir) / "session.json", error)) {
+      openable.push_back(dir);
+    }
+  }
+  return openable;
 }
 
 std::string RecentSessions::Add(const std::string& dir) {

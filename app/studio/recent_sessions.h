@@ -20,6 +20,10 @@ class RecentSessions {
   explicit RecentSessions(std::string path);
 
   const std::vector<std::string>& entries() const { return entries_; }
+  /// The entries that still hold a session (a session.json), for the menu and the picker: one
+  /// deleted since, or a temporary folder gone, is not offered (it stays in the file, in case
+  /// its disk comes back).
+  std::vector<std::string> Openable() const;
   const std::string& problem() const { return problem_; }
   /// Puts `dir` (made absolute) first and writes the list atomically. Failing to write it is
   /// not worth stopping a teacher for: the reason is returned (empty on success).

@@ -9,6 +9,7 @@
 #include "engine/calib/calibration.h"
 #include "engine/store/rollout_summary.h"
 #include "engine/store/training_record.h"
+#include "engine/worlds/outcome_words.h"
 
 namespace recon::studio {
 
@@ -42,7 +43,12 @@ teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInput
   f.training = inputs.training;
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
     if (fs::exists(session.CheckpointPath(method))) f.trained_methods.push_back(method);
-    if (fs::exists(session.RolloutSummaryPath(method))) f.evaluated_methods.push_back(method);
+    // Rollouts of a model retrained since (or trained on other data) are not this model's.
+    const std::optional<store::RolloutSummary> r = store::ReadRolloutSummary(session, method);
+    if (!r) continue;
+    const bool current =
+        cli::RolloutStaleness(session, *r, store::ReadTrainingRecord(session, method)).empty();
+    (current ? f.evaluated_methods : f.outdated_evaluations).push_back(method);
   }
   f.report_written = fs::exists(fs::path(session.dir()) / "report" / "report.html");
   return f;
@@ -58,6 +64,28 @@ ui::CalibrationView CalibrationView(const std::optional<calib::CalibrationReport
   view.threshold_m = calibration->options.pass_rmse_m;
   view.residual_m = calibration->residual_norm_m;
   for (bool outlier : calibration->outlier) view.inlier.push_back(!outlier);
+  return view;
+}
+
+/// A model saved in the session as the Train screen shows it: finished, with its loss curves.
+ui::TrainingView SavedTrainingView(const store::Session& session, const store::TrainingRecord& t) {
+  ui::TrainingView view;
+  view.method = t.method;
+  view.label = t.label;
+  view.done = true;
+  view.step = view.steps = t.steps;
+  view.seconds = t.seconds;
+  view.loss = t.loss;
+  const store::TrainingHistory& h = t.history;
+  for (size_t i = 0; i < h.step.size(); ++i) {
+    view.loss_step.push_back(static_cast<float>(h.step[i]));
+    if (i < h.action_loss.size()) view.action_loss.push_back(static_cast<float>(h.action_loss[i]));
+    if (t.method == teach::kReconMethod && i < h.beacon_loss.size()) {
+      view.beacon_loss.push_back(static_cast<float>(h.beacon_loss[i]));
+    }
+    if (i < h.total_loss.size()) view.total_loss.push_back(static_cast<float>(h.total_loss[i]));
+  }
+  view.out_of_date = cli::TrainingStaleness(session, t);
   return view;
 }
 
@@ -104,7 +132,16 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
                           e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
   }
   s.play_samples = static_cast<int>(session.PlaySamples());
-  s.teacher_seconds = cli::TeachingLedgerJson(session)["recon_play_total_s"].get<double>();
+  const nlohmann::json ledger = cli::TeachingLedgerJson(session);
+  s.teacher_seconds = ledger["recon_play_total_s"].get<double>();
+  s.teacher_demo_seconds = ledger["demonstrations_s"].get<double>();
+  s.teacher_play_seconds = ledger["play_s"].get<double>();
+  s.teacher_placement_seconds = ledger["beacon_placements_s"].get<double>();
+  for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
+    if (!fs::exists(session.CheckpointPath(method))) continue;
+    const std::optional<store::TrainingRecord> t = store::ReadTrainingRecord(session, method);
+    if (t) s.training.push_back(SavedTrainingView(session, *t));
+  }
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
     const std::optional<store::RolloutSummary> r = store::ReadRolloutSummary(session, method);
     if (!r) continue;
@@ -117,6 +154,9 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     view.has_success = r->has_success;
     view.success_rate = r->success_rate;
     view.tests = r->tests;
+    for (const store::ScenarioResult& scene : r->per_scenario) {
+      view.scene_failures.push_back(worlds::DescribeFailure(scene.details, scene.succeeded));
+    }
     view.out_of_date =
         cli::RolloutStaleness(session, *r, store::ReadTrainingRecord(session, method));
     s.rollouts.push_back(view);

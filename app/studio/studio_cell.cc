@@ -103,7 +103,6 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   recorder_.reset();
   play_.reset();
   replace_.reset();
-  last_training_.clear();
   report_path_.clear();
   world_ = std::move(made);
   session_ = std::move(opened);
@@ -162,8 +161,10 @@ void StudioCell::Tick() {
   ApplyFinishedJob();
 }
 
-bool StudioCell::Busy() const {
-  return (recorder_ && recorder_->recording()) || (play_ && play_->recording()) || jobs_.Running();
+bool StudioCell::Busy() const { return Driving() || jobs_.Running(); }
+
+bool StudioCell::Driving() const {
+  return (recorder_ && recorder_->recording()) || (play_ && play_->recording());
 }
 
 void StudioCell::AddError(const std::string& error) {

@@ -47,6 +47,10 @@ class StudioCell {
   void Tick();
   /// A recording or a job runs.
   bool Busy() const;
+  /// Whether the cell thread itself drives something (a recording stepping the simulation):
+  /// only then may its loop skip its sleep. A job (training, rollouts) runs on its own thread,
+  /// and a loop that spun meanwhile took a core from it.
+  bool Driving() const;
   /// Shown on screen until dismissed; the same error twice in a row is shown once.
   void AddError(const std::string& error);
   const std::vector<std::string>& errors() const { return errors_; }
@@ -123,6 +127,8 @@ class StudioCell {
   void Apply(const ui::PlayRollouts& c);
   void Apply(const ui::StartTraining& c);
   void Apply(const ui::CancelTraining& c);
+  void Apply(const ui::CancelRollouts& c);
+  void Apply(const ui::Quit&) {}  // the application closes the window (studio_main.cc)
   void Apply(const ui::RunRollouts& c);
   void Apply(const ui::ShowRolloutFrame& c);
   void Apply(const ui::WriteReport& c);
@@ -161,7 +167,6 @@ class StudioCell {
   JobThread jobs_;
   ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
   bool dirty_ = true;
-  std::vector<ui::TrainingView> last_training_;
   teach::Step current_step_ = teach::Step::kCell;
   std::vector<std::string> errors_;
   std::string status_;

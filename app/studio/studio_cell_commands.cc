@@ -145,28 +145,28 @@ void StudioCell::Apply(const ui::StartTraining& c) {
   training = cli::WithRecipeDefaults(*session_, training);
   training.seed = cli::DefaultTrainingSeed(*session_);
   const std::vector<std::string> methods = c.methods;
-  jobs_.Start(
-      JobKind::kTraining, [this, training, methods](JobThread& jobs) -> std::function<void()> {
-        std::vector<ui::TrainingView> finished = TrainMethods(jobs, *session_, training, methods);
-        return [this, finished = std::move(finished)] {
-          last_training_ = finished;
-          status_ = "Trained.";
-        };
-      });
+  jobs_.Start(JobKind::kTraining,
+              [this, training, methods](JobThread& jobs) -> std::function<void()> {
+                std::string said = TrainMethods(jobs, *session_, training, methods);
+                // The Train screen now shows the models saved in the session (session_view.cc).
+                return [this, said = std::move(said)] { status_ = said; };
+              });
 }
 
 void StudioCell::Apply(const ui::CancelTraining&) { jobs_.Cancel(); }
+
+void StudioCell::Apply(const ui::CancelRollouts&) { jobs_.Cancel(); }
 
 void StudioCell::Apply(const ui::RunRollouts& c) {
   RequireIdle("roll out");
   RequireNoEmergencyStop("roll out");
   if (std::string why = source_->CannotRollOut(); !why.empty()) throw UserError(why);
   const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
-  jobs_.Start(JobKind::kRollouts, [this, tests](JobThread&) -> std::function<void()> {
-    RollOutTrainedMethods(*session_, tests);
-    return [this] {
+  jobs_.Start(JobKind::kRollouts, [this, tests](JobThread& jobs) -> std::function<void()> {
+    std::string said = RollOutTrainedMethods(jobs, *session_, tests);
+    return [this, said = std::move(said)] {
       ReloadPlayback();
-      status_ = "Rollouts done.";
+      status_ = said;
     };
   });
 }

@@ -1,5 +1,8 @@
 // StudioCell's snapshots: what the screens show of the session, the cell and the jobs.
 
+#include <algorithm>
+#include <cmath>
+
 #include "app/studio/cell_view.h"
 #include "app/studio/session_view.h"
 #include "app/studio/studio_cell.h"
@@ -12,7 +15,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
     s = {};
     ShowWorkflow(teach::WorkflowFacts{}, s);  // the steps say they wait for a session
     s.picking_session = true;
-    s.recent_sessions = recent_.entries();
+    s.recent_sessions = recent_.Openable();
     ShowConnected(s);
     ShowSafety(s);
     s.errors = errors_;
@@ -26,7 +29,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s = session_view_;
   s.current_step = current_step_;
   s.picking_session = picking_session_;
-  s.recent_sessions = recent_.entries();
+  s.recent_sessions = recent_.Openable();
   RenderView(s);
   const JobState job = jobs_.Peek();
   s.calibration.running = job.running && job.kind == JobKind::kCalibration;
@@ -46,8 +49,23 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   ShowDeviceHealth(s);
   ShowConnected(s);
   ShowSafety(s);
-  s.training = job.kind == JobKind::kTraining ? job.training : last_training_;
+  // A training's live views stay until its result is taken (then the session view shows the
+  // saved models), so the screen never flashes the models from before.
+  const bool training_job = job.kind == JobKind::kTraining &&
+                            (job.running || job.finish != nullptr || !job.error.empty());
+  if (training_job) s.training = job.training;
+  s.training_running = job.running && job.kind == JobKind::kTraining;
+  s.training_cancelling = s.training_running && jobs_.cancel_flag()->load();
   s.rollouts_running = job.running && job.kind == JobKind::kRollouts;
+  s.rollouts_cancelling = s.rollouts_running && jobs_.cancel_flag()->load();
+  if (s.rollouts_running) {
+    s.rollout_steps_done = job.rollout_steps_done;
+    s.rollout_steps_total = job.rollout_steps_total;
+  }
+  s.busy_with = s.recording           ? "the recording"
+                : s.recording_play    ? "the play data recording"
+                : jobs_.RunningKind() ? std::string("the ") + JobKindName(*jobs_.RunningKind())
+                                      : "";
   s.rollout_tests = options_.rollout_tests;
   ShowPlayback(s);
   s.report_path = report_path_;
@@ -97,7 +115,9 @@ void StudioCell::ShowDeviceHealth(ui::StudioSnapshot& s) const {
   for (ui::BeaconView& b : s.beacons) {
     b.rate_hz = beacon.rate_hz;
     b.dropout_fraction = beacon.dropout_fraction;
-    b.noise_m = beacon.noise;
+    // Per axis, as a beacon's noise is specified (StreamStats::noise sums the axes' variances).
+    b.noise_m =
+        beacon.noise / std::sqrt(static_cast<double>(std::max<size_t>(1, b.reading.size())));
   }
 }
 

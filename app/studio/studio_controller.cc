@@ -88,7 +88,9 @@ void StudioController::RunCellThread() {
       handled_ += commands.size();
       next_publish = Clock::now() + kFrame;
     }
-    if (!busy) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    // A recording steps the simulation from this loop (as fast as it can with --fast); anything
+    // else only waits for commands, a job's end or the next frame.
+    if (!cell_->Driving()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }
 

@@ -9,6 +9,7 @@
 #include "devices/cell/sim_calibration.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/parallel_for.h"
+#include "engine/experiments/evaluation.h"
 #include "engine/teach/workflow.h"
 
 namespace recon::studio {
@@ -26,21 +27,23 @@ void CalibrateCell(JobThread& jobs, uint64_t seed, int points, const std::string
   calib::SaveCalibration(result.report, path);
 }
 
-std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session& session,
-                                           const cli::SessionTrainingOptions& options,
-                                           const std::vector<std::string>& methods) {
+std::string TrainMethods(JobThread& jobs, const store::Session& session,
+                         const cli::SessionTrainingOptions& options,
+                         const std::vector<std::string>& methods) {
   jobs.Update([&](JobState& state) {
     for (const std::string& method : methods) {
       ui::TrainingView view;
       view.method = method;
       view.label = method == teach::kBaselineMethod ? "Baseline" : "RECON";
       view.steps = options.steps;
+      view.loss = options.loss;
       state.training.push_back(view);
     }
   });
   // Each trainer runs on one core (learner.h), so the methods train side by side, one thread
   // each: on 2 cores Train-to-Rollouts takes the slowest method's time, not the sum.
   std::vector<std::exception_ptr> errors(methods.size());
+  std::vector<int> cancelled_at(methods.size(), -1);
   const auto train_one = [&](size_t i) {
     try {
       const auto start = std::chrono::steady_clock::now();
@@ -67,6 +70,9 @@ std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session
         state.training[i].running = false;
         state.training[i].done = true;
       });
+    } catch (const cli::TrainingCancelled& e) {
+      cancelled_at[i] = e.step();
+      jobs.Update([&](JobState& state) { state.training[i].running = false; });
     } catch (...) {
       errors[i] = std::current_exception();
       jobs.Update([&](JobState& state) { state.training[i].running = false; });
@@ -77,15 +83,41 @@ std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session
   for (const std::exception_ptr& error : errors) {
     if (error) std::rethrow_exception(error);
   }
-  return jobs.Peek().training;
+  // A cancel is what the teacher asked for, not an error: say what was kept.
+  std::string saved, stopped;
+  const std::vector<ui::TrainingView> views = jobs.Peek().training;
+  for (size_t i = 0; i < methods.size(); ++i) {
+    std::string& list = cancelled_at[i] < 0 ? saved : stopped;
+    list += (list.empty() ? "" : ", ") + views[i].label;
+    if (cancelled_at[i] >= 0) list += " at step " + std::to_string(cancelled_at[i]);
+  }
+  if (stopped.empty()) return "Trained.";
+  return "Training cancelled (" + stopped + "); nothing of it was saved" +
+         (saved.empty() ? "" : "; " + saved + " had finished and was saved") + ".";
 }
 
-void RollOutTrainedMethods(const store::Session& session, int tests) {
+std::string RollOutTrainedMethods(JobThread& jobs, const store::Session& session, int tests) {
+  std::vector<std::string> methods;
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    if (fs::exists(session.CheckpointPath(method))) {
-      cli::EvaluateSessionMethod(session, method, tests, cli::DefaultTestSeed(session));
-    }
+    if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
   }
+  std::vector<int> done(methods.size(), 0);
+  const auto on_step = [&](size_t i, int steps_done, int steps) {
+    jobs.Update([&](JobState& state) {
+      done[i] = steps_done;  // under the job's lock, as every method's thread writes here
+      state.rollout_steps_total = steps * static_cast<int>(methods.size());
+      state.rollout_steps_done = 0;
+      for (int d : done) state.rollout_steps_done += d;
+    });
+  };
+  // Side by side, one core each, as they train.
+  try {
+    cli::EvaluateSessionMethods(session, methods, tests, cli::DefaultTestSeed(session), {}, on_step,
+                                jobs.cancel_flag());
+  } catch (const experiments::EvaluationCancelled&) {
+    return "Rollouts cancelled; a method that had not finished keeps its rollouts from before.";
+  }
+  return "Rollouts done.";
 }
 
 }  // namespace recon::studio

@@ -16,13 +16,19 @@ namespace recon::studio {
 /// saves the result to `path`.
 void CalibrateCell(JobThread& jobs, uint64_t seed, int points, const std::string& path);
 
-/// Trains `methods` side by side (one thread each, up to the number of cores), with live losses in the job state's training views;
-/// returns the finished views. Throws UserError when cancelled.
-std::vector<ui::TrainingView> TrainMethods(JobThread& jobs, const store::Session& session,
-                                           const cli::SessionTrainingOptions& options,
-                                           const std::vector<std::string>& methods);
+/// Trains `methods` side by side (one thread each, up to the number of cores), with live losses
+/// in the job state's training views. Returns what happened, for the status line: "Trained.",
+/// or, when the job was cancelled, which methods finished (and were saved) before it and where
+/// the others stopped (nothing of them saved). Rethrows the first failure that was not a cancel;
+/// a method that finished keeps its checkpoint either way.
+std::string TrainMethods(JobThread& jobs, const store::Session& session,
+                         const cli::SessionTrainingOptions& options,
+                         const std::vector<std::string>& methods);
 
-/// Rolls out every trained method on `tests` new scenes with the beacons removed.
-void RollOutTrainedMethods(const store::Session& session, int tests);
+/// Rolls out every trained method on `tests` new scenes with the beacons removed, side by side,
+/// with their progress in the job state. Returns what happened, for the status line: "Rollouts
+/// done.", or, when the job was cancelled, that a method stopped half-way wrote nothing (it
+/// keeps its rollouts from before).
+std::string RollOutTrainedMethods(JobThread& jobs, const store::Session& session, int tests);
 
 }  // namespace recon::studio

@@ -49,7 +49,7 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
   app.add_flag("--fast", flags.fast,
                "record demonstrations as fast as the simulation runs (default: 10 Hz, real time)");
   app.add_option("--train-steps", flags.options.train_steps,
-                 "training steps per method (default: the world's recipe: 15000 on the "
+                 "training steps per method (default: the world's recipe: 7500 on the "
                  "tabletop)")
       ->check(WholeBetween(1, kMaxSteps));
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")

@@ -1,6 +1,7 @@
 #include "engine/experiments/evaluation.h"
 
 #include <array>
+#include <string>
 
 #include "engine/learn/action_ensembler.h"
 
@@ -22,7 +23,7 @@ double SquaredError(const std::vector<float>& a, const std::vector<float>& b) {
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
                                             const std::vector<uint64_t>& scenario_seeds,
-                                            bool keep_replay) {
+                                            bool keep_replay, const EvaluationHooks& hooks) {
   const size_t n = scenario_seeds.size();
   std::vector<std::unique_ptr<worlds::World>> scenario_worlds;
   scenario_worlds.reserve(n);
@@ -60,6 +61,10 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
         n, learn::ActionEnsembler(chunk, policy.spec().u_dim, 0.01, policy.ensembled_actions()));
   }
   for (int t = 0; t < steps; ++t) {
+    if (hooks.cancel != nullptr && hooks.cancel->load()) {
+      throw EvaluationCancelled("the rollouts were cancelled at step " + std::to_string(t) +
+                                " of " + std::to_string(steps));
+    }
     for (size_t i = 0; i < n; ++i) {
       worlds::Observation obs = scenario_worlds[i]->Observe();
       xs[i] = std::move(obs.x);
@@ -92,6 +97,7 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
       }
     }
     if (replay) keep_frame();
+    if (hooks.on_step) hooks.on_step(t + 1, steps);
   }
   for (size_t i = 0; i < n; ++i) {
     outcomes[i].metric =

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -7,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/core/error.h"
 #include "engine/learn/learner.h"
 #include "engine/worlds/world.h"
 
@@ -28,6 +30,21 @@ struct ScenarioOutcome {
   std::vector<std::vector<double>> replay;
 };
 
+/// What a caller that shows a rollout's progress, or may stop it, hands EvaluatePolicy. Neither
+/// changes the rollout.
+struct EvaluationHooks {
+  /// Called after each step of the batch with the steps done and the episode's length.
+  std::function<void(int done, int steps)> on_step;
+  /// Checked before each step; once true, EvaluatePolicy throws EvaluationCancelled.
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+/// A rollout stopped because it was asked to (EvaluationHooks::cancel); nothing was scored.
+class EvaluationCancelled : public UserError {
+ public:
+  using UserError::UserError;
+};
+
 /// Scores `policy` on each test scenario, one world per scenario stepped in lockstep so the
 /// policy sees all observations of a step in one batch. Usually the policy drives (a rollout) and
 /// the world's EpisodeMetric scores the end state; for worlds that ScoresActions(), the expert
@@ -38,7 +55,8 @@ struct ScenarioOutcome {
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
                                             const std::vector<uint64_t>& scenario_seeds,
-                                            bool keep_replay = false);
+                                            bool keep_replay = false,
+                                            const EvaluationHooks& hooks = {});
 
 /// The expert's outcome on the same scenarios (the ceiling a figure draws as a reference; 0 for
 /// worlds that ScoresActions()).

@@ -17,8 +17,9 @@ namespace recon::experiments {
 /// - camera images stored as 0-255 (`images_are_bytes`) are scaled to 0-1 before the CNN (the
 ///   authors' raw 0-255 was for their 32 x 32 Dynamic 2D drawings, which keep it);
 /// - the tabletop predicts chunks of 10 actions, ensembled over steps (ACT), with a (512, 512)
-///   policy trained 15,000 steps at a learning rate of 1e-3 (train.steps, train.learning_rate:
-///   what `recon experiment`, `recon train` and the studio use unless told otherwise).
+///   policy trained at a learning rate of 1e-3, 7,500 steps from the camera and 15,000 on the
+///   true positions (train.steps, train.learning_rate: what `recon experiment`, `recon train`
+///   and the studio use unless told otherwise).
 /// The feature gate's hidden layers when an option turns it on (NetworkConfig::
 /// feature_gate_hidden): the gate only has to tell phases of the task apart from the state.
 inline const std::vector<int> kFeatureGateHidden = {32};

@@ -183,20 +183,25 @@ StepStatus EvaluateTrain(const WorkflowFacts& facts, const StepStatus& record) {
 }
 
 StepStatus EvaluateRollouts(const WorkflowFacts& facts, const StepStatus& train) {
-  std::vector<std::string> not_yet;
+  // A method whose rollouts are of an older model is as good as not evaluated, and says why.
+  std::vector<std::string> not_yet, outdated;
   for (const std::string& method : facts.trained_methods) {
-    if (!Contains(facts.evaluated_methods, method)) not_yet.push_back(MethodTitle(method));
+    if (Contains(facts.evaluated_methods, method)) continue;
+    (Contains(facts.outdated_evaluations, method) ? outdated : not_yet)
+        .push_back(MethodTitle(method));
   }
   const int trained = static_cast<int>(facts.trained_methods.size());
-  std::string summary = std::to_string(trained - static_cast<int>(not_yet.size())) + " of " +
-                        Count(trained, "trained method") + " evaluated";
+  const int evaluated = trained - static_cast<int>(not_yet.size() + outdated.size());
+  std::string summary =
+      std::to_string(evaluated) + " of " + Count(trained, "trained method") + " evaluated";
   if (!not_yet.empty()) summary += "; not yet: " + Join(not_yet);
+  if (!outdated.empty()) summary += "; out of date: " + Join(outdated);
   if (facts.trained_methods.empty()) {
     const std::string why = facts.training ? Goto("Wait for training to finish", Step::kTrain)
                                            : Needs(train, "Train the Baseline or RECON first");
     return Blocked(Step::kRollouts, summary, why);
   }
-  return ReadyOrDone(Step::kRollouts, not_yet.empty(), summary);
+  return ReadyOrDone(Step::kRollouts, not_yet.empty() && outdated.empty(), summary);
 }
 
 StepStatus EvaluateReport(const WorkflowFacts& facts, const StepStatus& cell,

@@ -46,7 +46,10 @@ struct WorkflowFacts {
   bool recording_play = false;                 ///< a play data recording is in progress
   bool training = false;                       ///< training is in progress
   std::vector<std::string> trained_methods;    ///< kBaselineMethod, kReconMethod, ...
-  std::vector<std::string> evaluated_methods;  ///< methods whose rollouts are done
+  std::vector<std::string> evaluated_methods;  ///< methods whose rollouts are of today's model
+  /// Methods whose rollouts are of an older model (retrained since) or of a model trained on
+  /// other data than the session now holds: they count as not evaluated.
+  std::vector<std::string> outdated_evaluations;
   bool report_written = false;
 };
 

@@ -45,8 +45,8 @@ TEST(StudioJobsTest, BothMethodsTrainSideBySideAndBothAreSaved) {
   const fs::path dir = RecordedSession("both");
   const store::Session session = store::Session::Open(dir.string());
   JobThread jobs;
-  const std::vector<ui::TrainingView> views =
-      TrainMethods(jobs, session, QuickTraining(session), {"baseline", "recon"});
+  EXPECT_EQ(TrainMethods(jobs, session, QuickTraining(session), {"baseline", "recon"}), "Trained.");
+  const std::vector<ui::TrainingView> views = jobs.Peek().training;
   ASSERT_EQ(views.size(), 2u);
   for (const ui::TrainingView& view : views) {
     EXPECT_TRUE(view.done) << view.method;
@@ -75,6 +75,68 @@ TEST(StudioJobsTest, AFailingMethodIsReportedAndTheOtherKeepsItsCheckpoint) {
   EXPECT_FALSE(views[1].running);
   EXPECT_TRUE(fs::exists(dir / "checkpoints" / "baseline.ckpt"));
   EXPECT_FALSE(fs::exists(dir / "checkpoints" / "nonsense.ckpt"));
+}
+
+// Cancel is what the teacher asked for, not an error: the job ends normally and says what was
+// kept. Here the cancel comes before either method finished, so nothing is saved.
+TEST(StudioJobsTest, ACancelledTrainingSaysWhereEachMethodStoppedAndSavesNothing) {
+  const fs::path dir = RecordedSession("cancel");
+  const store::Session session = store::Session::Open(dir.string());
+  JobThread jobs;
+  cli::SessionTrainingOptions options = QuickTraining(session);
+  options.steps = 100000;  // far longer than the cancel below waits
+  std::string said;
+  jobs.Start(JobKind::kTraining, [&](JobThread& j) -> std::function<void()> {
+    said = TrainMethods(j, session, options, {"baseline", "recon"});
+    return [] {};
+  });
+  // Cancel once both have reported progress (their data is loaded and steps are running).
+  const auto both_running = [&] {
+    const std::vector<ui::TrainingView> views = jobs.Peek().training;
+    return views.size() == 2 && views[0].step > 0 && views[1].step > 0;
+  };
+  while (!both_running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  jobs.Cancel();
+  while (jobs.Peek().running) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const JobState ended = jobs.Take();
+  EXPECT_EQ(ended.error, "") << "a cancel is not an error";
+  EXPECT_NE(ended.finish, nullptr);
+  EXPECT_THAT(said, HasSubstr("Training cancelled (Baseline at step "));
+  EXPECT_THAT(said, HasSubstr("RECON (Play) at step "));
+  EXPECT_THAT(said, HasSubstr("nothing of it was saved"));
+  for (const ui::TrainingView& view : ended.training) {
+    EXPECT_FALSE(view.running) << view.method;
+    EXPECT_FALSE(view.done) << view.method;
+  }
+  EXPECT_FALSE(fs::exists(dir / "checkpoints" / "baseline.ckpt"));
+  EXPECT_FALSE(fs::exists(dir / "checkpoints" / "recon.ckpt"));
+}
+
+// The rollouts report their progress over both methods, and a cancel writes nothing: the
+// rollouts from before stay as they were.
+TEST(StudioJobsTest, RolloutsShowProgressAndACancelWritesNothing) {
+  const fs::path dir = RecordedSession("rollouts");
+  const store::Session session = store::Session::Open(dir.string());
+  {
+    JobThread jobs;
+    ASSERT_EQ(TrainMethods(jobs, session, QuickTraining(session), {"baseline", "recon"}),
+              "Trained.");
+  }
+  const fs::path baseline_rollouts = dir / "rollouts" / "baseline.json";
+  {
+    JobThread jobs;
+    jobs.Cancel();  // before the first step: deterministic, whatever the machine's speed
+    EXPECT_THAT(RollOutTrainedMethods(jobs, session, 3), HasSubstr("Rollouts cancelled"));
+    EXPECT_FALSE(fs::exists(baseline_rollouts));
+    EXPECT_FALSE(fs::exists(dir / "rollouts" / "recon.json"));
+  }
+  JobThread jobs;
+  EXPECT_EQ(RollOutTrainedMethods(jobs, session, 3), "Rollouts done.");
+  const JobState state = jobs.Peek();
+  EXPECT_GT(state.rollout_steps_total, 0);
+  EXPECT_EQ(state.rollout_steps_done, state.rollout_steps_total) << "both methods, every step";
+  EXPECT_TRUE(fs::exists(baseline_rollouts));
+  EXPECT_TRUE(fs::exists(dir / "rollouts" / "recon.json"));
 }
 
 // Running() covers a job until its result is taken, a failure's included: the studio looks

@@ -71,12 +71,13 @@ const std::vector<std::string> kLabels = {"Cell##step",
                                           "Pause",
                                           "Write the report",
                                           "Rescan",
-                                          "E-STOP (Esc)",
+                                          "E-STOP (F12)",
                                           "Release e-stop",
                                           "Dismiss",
                                           "Recrod##step"};
-const std::vector<std::string> kKeys = {"enter", "tab",  "escape", "backspace", "space",   "up",
-                                        "down",  "left", "right",  "pageup",    "pagedown"};
+const std::vector<std::string> kKeys = {"enter",    "tab",  "escape", "backspace", "space",
+                                        "up",       "down", "left",   "right",     "pageup",
+                                        "pagedown", "f12",  "Return", "esc"};
 // Lines the parser refuses, each for a different reason.
 const std::vector<std::string> kBadLines = {"wait -1",
                                             "wait nan",

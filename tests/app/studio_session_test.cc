@@ -116,6 +116,21 @@ TEST(StudioSessionTest, BadArgumentsAndScriptsAreClearErrors) {
   fs::remove_all(dir);
 }
 
+// Session > Quit closes the studio: a script ends there, and the lines after it (here one that
+// would fail) never run.
+TEST(StudioSessionTest, QuitFromTheSessionMenuEndsTheScript) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("recon-studio-quit-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "quit.script") << "wait 2\nclick Session\nclick Quit\nclick Recrod##step\n";
+  const testing::CommandResult r = RunStudio("--headless --session " + (dir / "s").string() +
+                                             " --script " + (dir / "quit.script").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("recon-studio: session"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 // Without --session the studio starts at the session picker, offering what was opened before.
 TEST(StudioSessionTest, WithoutASessionItStartsAtThePickerWithTheRecentOnes) {
   const fs::path dir =

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -85,6 +86,47 @@ TEST(EvaluationReplayTest, WorldsWithoutReplayKeepNothing) {
       EvaluatePolicy(make_world, trainer.policy(), {3, 4}, true);
   ASSERT_EQ(kept.size(), 2u);
   for (const ScenarioOutcome& o : kept) EXPECT_TRUE(o.replay.empty());
+}
+
+}  // namespace
+}  // namespace recon::experiments
+
+namespace recon::experiments {
+namespace {
+
+// The hooks a screen uses: a progress call after every step, and a cancel that stops the batch
+// before the next step and scores nothing. Neither changes a rollout.
+TEST(EvaluationHooksTest, ProgressEveryStepChangesNothingAndCancelStops) {
+  const learn::Policy policy = BarelyTrainedPolicy();
+  const WorldMaker make_world = [] {
+    return worlds::MakeWorld("tabletop", "none", 0.0, false, Cell());
+  };
+  const std::vector<uint64_t> seeds = {11};
+  const std::vector<ScenarioOutcome> plain = EvaluatePolicy(make_world, policy, seeds);
+  std::vector<int> reported;
+  EvaluationHooks hooks;
+  hooks.on_step = [&](int done, int steps) {
+    EXPECT_EQ(steps, worlds::Tabletop::kEpisodeLength);
+    reported.push_back(done);
+  };
+  const std::vector<ScenarioOutcome> watched =
+      EvaluatePolicy(make_world, policy, seeds, false, hooks);
+  ASSERT_EQ(static_cast<int>(reported.size()), worlds::Tabletop::kEpisodeLength);
+  for (size_t i = 0; i < reported.size(); ++i) EXPECT_EQ(reported[i], static_cast<int>(i) + 1);
+  ASSERT_EQ(watched.size(), 1u);
+  EXPECT_EQ(watched[0].metric, plain[0].metric);
+  EXPECT_EQ(watched[0].details, plain[0].details);
+
+  // Cancelled after step 5: the sixth never runs.
+  std::atomic<bool> cancel{false};
+  int last = 0;
+  hooks.cancel = &cancel;
+  hooks.on_step = [&](int done, int) {
+    last = done;
+    if (done == 5) cancel = true;
+  };
+  EXPECT_THROW(EvaluatePolicy(make_world, policy, seeds, false, hooks), EvaluationCancelled);
+  EXPECT_EQ(last, 5);
 }
 
 }  // namespace

@@ -169,6 +169,12 @@ TEST(WorkflowTest, FullSessionAdvancesStepByStep) {
   check(facts, Step::kRollouts, "both trained");
   facts.evaluated_methods = {kBaselineMethod};
   check(facts, Step::kRollouts, "Baseline evaluated");
+  // RECON retrained after its rollouts: they are of an older model, so RECON is not evaluated.
+  facts.outdated_evaluations = {kReconMethod};
+  EXPECT_EQ(StateOf(facts, Step::kRollouts), StepState::kReady);
+  EXPECT_THAT(StatusOf(facts, Step::kRollouts).summary,
+              HasSubstr("1 of 2 trained methods evaluated; out of date: RECON"));
+  facts.outdated_evaluations.clear();
   facts.evaluated_methods.push_back(kReconMethod);
   check(facts, Step::kReport, "both evaluated");
   facts.report_written = true;

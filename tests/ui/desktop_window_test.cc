@@ -305,10 +305,11 @@ TEST(StudioWindowTest, AClickInTheWindowOpensBeaconsAndTheLastFrameIsWrittenOnCl
   VirtualDisplay display;
   ASSERT_EQ(display.error(), "");
   // No --frames: the studio runs until its window is closed. `timeout` is a last resort only.
-  const std::string command = "DISPLAY=" + display.name() + " timeout -s KILL 120 " + RECON_STUDIO +
-                              " --session " + (dir / "session").string() +
-                              " --width 1280 --height 800 --screenshot " +
-                              (dir / "last.png").string();
+  // Its list of recent sessions under the test's folder, never the user's own.
+  const std::string command =
+      "DISPLAY=" + display.name() + " XDG_CONFIG_HOME=" + (dir / "config").string() +
+      " timeout -s KILL 120 " + RECON_STUDIO + " --session " + (dir / "session").string() +
+      " --width 1280 --height 800 --screenshot " + (dir / "last.png").string();
   studio = std::async(std::launch::async, [command] { return testing::RunCommand(command); });
   const unsigned long window = display.FindWindow("^RECON Studio - ");
   ASSERT_NE(window, 0u) << "no studio window appeared";
@@ -368,8 +369,9 @@ TEST(StudioWindowTest, WithoutAReachableDisplayTheStudioRunsHeadlessAndSaysWhy) 
   fs::remove_all(dir);
   const std::string display = MissingDisplay();
   const testing::CommandResult r = testing::RunCommand(
-      "DISPLAY=" + display + " timeout -s KILL 120 " + RECON_STUDIO + " --session " +
-      (dir / "session").string() + " --frames 3 --screenshot " + (dir / "last.png").string());
+      "DISPLAY=" + display + " XDG_CONFIG_HOME=" + (dir / "config").string() +
+      " timeout -s KILL 120 " + RECON_STUDIO + " --session " + (dir / "session").string() +
+      " --frames 3 --screenshot " + (dir / "last.png").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("recon-studio: headless (EGL): cannot open a desktop window"),
             std::string::npos)

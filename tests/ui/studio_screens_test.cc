@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "tests/support/golden_image.h"
 #include "tests/ui/studio_test_support.h"
+#include "ui/platform/frame_input.h"
 #include "ui/platform/headless_window.h"
 #include "ui/studio/studio_ui.h"
 #include "ui/testing/ui_driver.h"
@@ -90,30 +91,30 @@ TEST(StudioScreenTest, TheEmergencyStopShowsOnEveryScreenAndMatchesItsGolden) {
   EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("estop")));
 }
 
-TEST(StudioCommandTest, TheEStopButtonAndEscapeEngageItAndReleaseReleasesIt) {
+TEST(StudioCommandTest, TheEStopButtonAndF12EngageItAndReleaseReleasesIt) {
   StudioHarness harness;
   harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
-  harness.driver().Click("E-STOP (Esc)");
+  harness.driver().Click("E-STOP (F12)");
   std::vector<StudioCommand> commands = harness.Commands();
   ASSERT_EQ(commands.size(), 1u);
   ASSERT_TRUE(std::holds_alternative<EmergencyStop>(commands[0]));
   EXPECT_TRUE(std::get<EmergencyStop>(commands[0]).engage);
 
-  harness.driver().Press(ImGuiKey_Escape);
+  harness.driver().Press(kEmergencyStopKey);
   commands = harness.Commands();
   ASSERT_EQ(commands.size(), 1u);
   ASSERT_TRUE(std::holds_alternative<EmergencyStop>(commands[0]));
   EXPECT_TRUE(std::get<EmergencyStop>(commands[0]).engage);
-  EXPECT_EQ(std::get<EmergencyStop>(commands[0]).reason, "Escape pressed");
+  EXPECT_EQ(std::get<EmergencyStop>(commands[0]).reason, "F12 pressed");
 
   StudioSnapshot stopped = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
   stopped.safety.estop = true;
-  stopped.safety.estop_reason = "Escape pressed";
+  stopped.safety.estop_reason = "F12 pressed";
   harness.Show(stopped);
   harness.Commands();
-  EXPECT_THROW(harness.driver().Click("E-STOP (Esc)"), UserError);     // replaced by Release
+  EXPECT_THROW(harness.driver().Click("E-STOP (F12)"), UserError);     // replaced by Release
   EXPECT_THROW(harness.driver().Click("Start recording"), UserError);  // disabled until then
-  harness.driver().Press(ImGuiKey_Escape);  // already engaged: nothing new to say
+  harness.driver().Press(kEmergencyStopKey);  // already engaged: nothing new to say
   EXPECT_TRUE(harness.Commands().empty());
   harness.driver().Click("Release e-stop");
   commands = harness.Commands();
@@ -335,6 +336,123 @@ TEST(StudioCommandTest, RolloutPlaybackStepsScenesAndFrames) {
   harness.Show(running);
   harness.Commands();
   EXPECT_THROW(harness.driver().Click("Play"), UserError);
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+// Escape closes a menu (ImGui's own meaning) and never stops the arm; only F12 and the button do.
+TEST(StudioCommandTest, EscapeClosesAMenuAndNeverEngagesTheEStop) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("Session");
+  EXPECT_TRUE(harness.driver().Drawn("Open or create...")) << "the menu opened";
+  harness.driver().Press(ImGuiKey_Escape);
+  harness.driver().WaitFrames(2);
+  EXPECT_FALSE(harness.driver().Drawn("Open or create...")) << "Escape closed the menu";
+  harness.driver().Press(ImGuiKey_Escape);  // and on its own, with nothing open
+  for (const StudioCommand& c : harness.Commands()) {
+    EXPECT_FALSE(std::holds_alternative<EmergencyStop>(c)) << "Escape engaged the e-stop";
+  }
+}
+
+// A training that has started but not yet reported a step (it loads the session's data first)
+// is running: the screen offers Cancel, never a second "Train"; after Cancel it says it is
+// stopping and does not take a second click.
+TEST(StudioCommandTest, TheTrainScreenFollowsTheJobNotTheProgressBars) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kTrain);
+  s.training_running = true;
+  s.busy_with = "the training";
+  harness.Show(s);
+  EXPECT_FALSE(harness.driver().Drawn("Train Baseline and RECON"));
+  harness.driver().Click("Cancel training");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<CancelTraining>(commands[0]));
+
+  s.training_cancelling = true;
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Cancelling...##cancel-training"), UserError);
+  EXPECT_TRUE(harness.Commands().empty());
+
+  // Once it has ended, the saved models are shown, with why one no longer matches the session.
+  StudioSnapshot ended = SnapshotAt(Progress::kTrained, teach::Step::kTrain);
+  TrainingView saved;
+  saved.method = "baseline";
+  saved.label = "Baseline";
+  saved.done = true;
+  saved.step = saved.steps = 7500;
+  saved.out_of_date = "trained on 4 episodes; since then demo_4 was added";
+  ended.training = {saved};
+  harness.Show(ended);
+  EXPECT_TRUE(harness.driver().Drawn("Train Baseline and RECON"));
+  EXPECT_FALSE(harness.driver().Drawn("Cancel training"));
+}
+
+// Rollouts show how far they are and can be cancelled, once.
+TEST(StudioCommandTest, RunningRolloutsShowProgressAndCancel) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kTrained, teach::Step::kRollouts);
+  s.rollouts_running = true;
+  s.rollout_steps_done = 120;
+  s.rollout_steps_total = 400;
+  s.busy_with = "the rollouts";
+  harness.Show(s);
+  EXPECT_FALSE(harness.driver().Drawn("Run rollouts"));
+  harness.driver().Click("Cancel rollouts");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<CancelRollouts>(commands[0]));
+  s.rollouts_cancelling = true;
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Cancelling...##cancel-rollouts"), UserError);
+  EXPECT_TRUE(harness.Commands().empty());
+}
+
+// While something runs the session cannot change; the menu's items are disabled (a click does
+// nothing) and the menu says why.
+TEST(StudioCommandTest, TheSessionMenuIsDisabledWhileAJobRuns) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kTrain);
+  s.training_running = true;
+  s.busy_with = "the training";
+  harness.Show(s);
+  harness.driver().Click("Session");
+  EXPECT_THROW(harness.driver().Click("Open or create..."), UserError);
+  EXPECT_THROW(harness.driver().Click("/home/lab/sessions/cups##recent-menu"), UserError);
+  EXPECT_TRUE(harness.Commands().empty());
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+// Session > Quit asks the application to close; with something running it says what stops.
+TEST(StudioCommandTest, TheSessionMenuHasQuit) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.driver().Click("Session");
+  harness.driver().Click("Quit");
+  std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<Quit>(commands[0]));
+
+  StudioSnapshot training = SnapshotAt(Progress::kRecorded, teach::Step::kTrain);
+  training.training_running = true;
+  training.busy_with = "the training";
+  harness.Show(training);
+  harness.driver().WaitFrames(2);
+  harness.driver().Click("Session");
+  harness.driver().Click("Quit (stops the training)##quit");
+  commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<Quit>(commands[0]));
 }
 
 }  // namespace

@@ -127,6 +127,9 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
           {"demo_" + std::to_string(i), 130 + 3 * i, 13.0 + 0.3 * i, true, i == 2, "train", ""});
     }
     s.teacher_seconds = 54.0 + 4.6 + 4.0;
+    s.teacher_demo_seconds = 54.0;
+    s.teacher_placement_seconds = 4.6;
+    s.teacher_play_seconds = 4.0;
     s.play_samples = 40;
   }
   if (p >= 5) {
@@ -170,6 +173,8 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
       r.scenario_seed = 1234567;
       r.scenario_metric = r.method == "baseline" ? 0.412 : 0.031;
       r.scenario_succeeded = r.method == "recon";
+      r.scene_failures.assign(20, r.method == "recon" ? "" : "never picked the toast up");
+      if (r.method == "baseline") r.scene_failures[2] = "delivered towards the bowl";
       r.frame_image = SyntheticCamera();
       r.frame_id = 1;
     }

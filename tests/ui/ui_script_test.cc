@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "ui/platform/frame_input.h"
 
 namespace recon::ui {
 namespace {
@@ -176,6 +177,32 @@ TEST(UiScriptTest, RandomLinesParseInRangeOrAreRefusedNamingTheirLine) {
   // The draw reaches both sides, so neither branch's checks are vacuous.
   EXPECT_GT(parsed, 1000);
   EXPECT_GT(refused, 1000);
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+// The names people write for keys (xdotool's Return and Prior, a browser's ArrowUp), in any case.
+TEST(UiScriptTest, KeyNamesAcceptTheUsualSynonymsInAnyCase) {
+  EXPECT_EQ(ScriptKeyNamed("enter"), ImGuiKey_Enter);
+  EXPECT_EQ(ScriptKeyNamed("Return"), ImGuiKey_Enter);
+  EXPECT_EQ(ScriptKeyNamed("ESC"), ImGuiKey_Escape);
+  EXPECT_EQ(ScriptKeyNamed("PgUp"), ImGuiKey_PageUp);
+  EXPECT_EQ(ScriptKeyNamed("Prior"), ImGuiKey_PageUp);
+  EXPECT_EQ(ScriptKeyNamed("next"), ImGuiKey_PageDown);
+  EXPECT_EQ(ScriptKeyNamed("ArrowLeft"), ImGuiKey_LeftArrow);
+  EXPECT_EQ(ScriptKeyNamed("kp_enter"), ImGuiKey_KeyPadEnter);
+  EXPECT_EQ(ScriptKeyNamed("Delete"), ImGuiKey_Delete);
+  EXPECT_EQ(ScriptKeyNamed("F12"), kEmergencyStopKey);
+  EXPECT_EQ(ScriptKeyNamed("sideways"), -1);
+  EXPECT_EQ(ScriptKeyNamed(""), -1);
+  const std::vector<ScriptStep> steps = ParseUiScript("press return\nhold PageDown 0.5\n", "s");
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0].key, ImGuiKey_Enter);
+  EXPECT_EQ(steps[1].key, ImGuiKey_PageDown);
 }
 
 }  // namespace

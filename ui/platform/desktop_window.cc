@@ -74,6 +74,7 @@ int ImGuiKeyOf(int glfw_key) {
 void AddKeySlots(int glfw_key, std::vector<int>& slots) {
   if (const int key = ImGuiKeyOf(glfw_key); key >= 0) slots.push_back(key);
   if (glfw_key >= GLFW_KEY_A && glfw_key <= GLFW_KEY_Z) slots.push_back(glfw_key);
+  if (glfw_key == GLFW_KEY_F12) slots.push_back(kEmergencyStopKey);
 }
 
 const char* ContextApiName(int api) {

@@ -4,6 +4,11 @@
 
 namespace recon::ui {
 
+/// The e-stop's key, F12: one that nothing else in the studio uses, that no text field types
+/// and no menu or popup closes with (Escape did both). ImGui 1.86 does not name F keys, so it
+/// has an io.KeysDown slot of its own, above the letters' ASCII slots (see keys_down below).
+inline constexpr int kEmergencyStopKey = 300;
+
 /// Everything ImGui hears from the outside world in one frame. A window backend fills it from
 /// GLFW events; the headless test driver fills it from a script. Fixed time steps and pinned
 /// positions make frames reproducible, which the golden screenshots need.

@@ -61,8 +61,9 @@ void DrawBeaconsScreen(const ScreenContext& context) {
       ImGui::EndCombo();
     }
     StatusText(b.reading.empty() ? Status::kOff : Status::kOk, ReadingText(b));
-    ImGui::Text("%.1f Hz, %.0f%% dropped, noise %.1f cm", b.rate_hz, 100.0 * b.dropout_fraction,
-                100.0 * b.noise_m);
+    // Measured, not configured: the readings' spread over the last 3 s, per axis.
+    ImGui::Text("%.1f Hz, %.0f%% dropped, spread %.1f cm per axis (last 3 s, object still)",
+                b.rate_hz, 100.0 * b.dropout_fraction, 100.0 * b.noise_m);
     ImGui::Separator();
     ImGui::PopID();
   }

@@ -9,10 +9,14 @@ namespace recon::ui {
 void DrawPlayScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Play data", teach::StepPurpose(teach::Step::kPlay));
+  // Who moves the objects depends on the cell: the simulated teacher moves the bowl itself.
   ImGui::TextWrapped(
-      "Move the objects around by hand while the camera and the beacons record: these (image, "
-      "beacon) pairs teach the features where the objects are, without any demonstration. "
-      "Optional; it helps RECON most when demonstrations are few.");
+      "%s while the camera and the beacons record: these (image, beacon) pairs teach the "
+      "features where the objects are, without any demonstration. Optional; it helps RECON most "
+      "when demonstrations are few.",
+      s.cell_kind == "real" ? "Move the objects around by hand (the beacon stays on its object)"
+                            : "The simulated teacher moves the bowl around, the plate and its "
+                              "beacon stay");
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
   CameraView("camera##play", context.textures.camera, 420.0f, s.beacons, {});

@@ -75,7 +75,10 @@ void DrawRecordScreen(const ScreenContext& context) {
   DrawTeleopChoice(context);
   ImGui::Text("Grip at (%.2f, %.2f, %.2f) m, gripper %s", s.grip_m[0], s.grip_m[1], s.grip_m[2],
               s.gripper_closed ? "closed" : "open");
+  // The parts, so 4.6 s before the first take reads as what it is (placing the beacons).
   ImGui::Text("Teacher's time so far: %.1f s", s.teacher_seconds);
+  ImGui::TextDisabled("demonstrations %.1f s, play %.1f s, placing beacons %.1f s",
+                      s.teacher_demo_seconds, s.teacher_play_seconds, s.teacher_placement_seconds);
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();

@@ -76,6 +76,14 @@ void DrawPlayback(const ScreenContext& context) {
     StatusText(r.has_success ? (r.scenario_succeeded ? Status::kOk : Status::kError) : Status::kOff,
                Format("%s: %s %.3f%s", r.label.c_str(), r.metric_name.c_str(), r.scenario_metric,
                       r.has_success ? (r.scenario_succeeded ? ", success" : ", failed") : ""));
+    // What went wrong, as the summary's details tell it (the same words as the report's).
+    const size_t scene = static_cast<size_t>(r.scenario);
+    if (!r.scenario_succeeded && scene < r.scene_failures.size() &&
+        !r.scene_failures[scene].empty()) {
+      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+      ImGui::TextDisabled("%s", r.scene_failures[scene].c_str());
+      ImGui::PopTextWrapPos();
+    }
     ImGui::EndGroup();
   }
 }
@@ -86,7 +94,20 @@ void DrawRolloutsScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Rollouts", teach::StepPurpose(teach::Step::kRollouts));
   if (s.rollouts_running) {
-    StatusText(Status::kBusy, "Rolling out...");
+    if (Button(s.rollouts_cancelling ? "Cancelling...##cancel-rollouts" : "Cancel rollouts",
+               !s.rollouts_cancelling, "the rollouts stop at their next step")) {
+      context.commands.Push(CancelRollouts{});
+    }
+    ImGui::SameLine();
+    const float fraction = s.rollout_steps_total > 0 ? static_cast<float>(s.rollout_steps_done) /
+                                                           static_cast<float>(s.rollout_steps_total)
+                                                     : 0.0f;
+    ImGui::ProgressBar(fraction, ImVec2(-1, 0),
+                       s.rollout_steps_total > 0
+                           ? Format("rolling out on %d scenes: %d / %d steps", s.rollout_tests,
+                                    s.rollout_steps_done, s.rollout_steps_total)
+                                 .c_str()
+                           : "starting the rollouts...");
   } else {
     if (Button("Run rollouts", !MotionBlocked(s, teach::Step::kRollouts),
                WhyMotionBlocked(s, teach::Step::kRollouts))) {

@@ -1,6 +1,5 @@
 #include <imgui.h>
 
-#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -11,17 +10,19 @@ namespace recon::ui {
 
 void DrawSessionMenu(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
-  const bool busy = s.recording || s.recording_play || s.calibration.running ||
-                    s.rollouts_running ||
-                    std::any_of(s.training.begin(), s.training.end(),
-                                [](const TrainingView& t) { return t.running; });
+  const bool busy = !s.busy_with.empty();
+  const std::string why = "wait for " + s.busy_with + " to finish (or stop it) first";
   if (!BeginMenu("Session")) return;
-  if (MenuItem("Open or create...", !busy)) context.commands.Push(ShowSessionPicker{true});
+  // While something runs the session cannot change: the items say so instead of doing nothing.
+  if (busy) ImGui::TextDisabled("%s", ("Switching sessions: " + why).c_str());
+  if (MenuItem("Open or create...", !busy, why)) context.commands.Push(ShowSessionPicker{true});
   if (!s.recent_sessions.empty()) {
     ImGui::Separator();
     ImGui::TextDisabled("Recent");
     for (const std::string& dir : s.recent_sessions) {
-      if (MenuItem((dir + "##recent-menu").c_str(), !busy && dir != s.session_dir)) {
+      const bool current = dir == s.session_dir;
+      if (MenuItem((dir + "##recent-menu").c_str(), !busy && !current,
+                   current ? "this session is open" : why)) {
         context.commands.Push(OpenSession{dir});
       }
     }
@@ -30,6 +31,12 @@ void DrawSessionMenu(const ScreenContext& context) {
   // Every change (an episode, a mark, a calibration) is committed to disk when it is made, so
   // there is nothing to save by hand: say so where people look for Save.
   ImGui::TextDisabled("Saved: every change is on disk when it is made");
+  ImGui::Separator();
+  // Nothing is lost by quitting: what runs stops as when the window is closed, and a take that
+  // was not kept is not saved (the same as Discard).
+  if (MenuItem(s.busy_with.empty() ? "Quit" : ("Quit (stops " + s.busy_with + ")##quit").c_str())) {
+    context.commands.Push(Quit{});
+  }
   ImGui::EndMenu();
 }
 

@@ -3,13 +3,21 @@
 #include <algorithm>
 
 #include "ui/screens/screens.h"
+#include "ui/widgets/loss_plot.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
 
 namespace {
 
-void DrawRun(const TrainingView& run, float width) {
+/// The loss's unit, for the plots' titles.
+const char* LossUnit(const TrainingView& run) {
+  return run.loss == "nll" ? "Gaussian NLL, nats" : "squared error, standardised";
+}
+
+/// Both methods' curves share one scale per term, so their heights compare.
+void DrawRun(const TrainingView& run, float width, const PlotRange& action,
+             const PlotRange& beacon) {
   ImGui::BeginGroup();
   ImGui::TextUnformatted(run.label.c_str());
   const float fraction = run.steps > 0 ? static_cast<float>(run.step) / run.steps : 0.0f;
@@ -18,18 +26,19 @@ void DrawRun(const TrainingView& run, float width) {
       run.done ? "done"
                : Format("%d / %d steps, %.0f s", run.step, run.steps, run.seconds).c_str());
   if (!run.action_loss.empty()) {
-    const auto [low, high] = std::minmax_element(run.action_loss.begin(), run.action_loss.end());
-    ImGui::PlotLines("##action", run.action_loss.data(), static_cast<int>(run.action_loss.size()),
-                     0, Format("action loss %.3g", run.action_loss.back()).c_str(), *low, *high,
-                     ImVec2(width, 140));
+    LossPlot("action", Format("Action loss (%s): %.3g", LossUnit(run), run.action_loss.back()),
+             run.loss_step, run.action_loss, action, width, 150);
   }
   if (!run.beacon_loss.empty()) {
-    const auto [low, high] = std::minmax_element(run.beacon_loss.begin(), run.beacon_loss.end());
-    ImGui::PlotLines("##beacon", run.beacon_loss.data(), static_cast<int>(run.beacon_loss.size()),
-                     0, Format("beacon loss %.3g", run.beacon_loss.back()).c_str(), *low, *high,
-                     ImVec2(width, 100));
+    LossPlot("beacon", Format("Beacon loss (%s): %.3g", LossUnit(run), run.beacon_loss.back()),
+             run.loss_step, run.beacon_loss, beacon, width, 110);
   }
   if (!run.error.empty()) StatusText(Status::kError, run.error);
+  if (!run.out_of_date.empty()) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+    StatusText(Status::kWarning, "Out of date: " + run.out_of_date);
+    ImGui::PopTextWrapPos();
+  }
   ImGui::EndGroup();
 }
 
@@ -38,10 +47,12 @@ void DrawRun(const TrainingView& run, float width) {
 void DrawTrainScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Train", teach::StepPurpose(teach::Step::kTrain));
-  const bool running = std::any_of(s.training.begin(), s.training.end(),
-                                   [](const TrainingView& t) { return t.running; });
-  if (running) {
-    if (Button("Cancel training")) context.commands.Push(CancelTraining{});
+  // The job decides, not the views: a training shows no progress until its data is loaded.
+  if (s.training_running) {
+    if (Button(s.training_cancelling ? "Cancelling...##cancel-training" : "Cancel training",
+               !s.training_cancelling, "the trainers stop at their next step")) {
+      context.commands.Push(CancelTraining{});
+    }
   } else if (Button("Train Baseline and RECON", !Blocked(s, teach::Step::kTrain),
                     WhyBlocked(s, teach::Step::kTrain))) {
     context.commands.Push(StartTraining{{"baseline", "recon"}});
@@ -49,11 +60,25 @@ void DrawTrainScreen(const ScreenContext& context) {
   ImGui::Spacing();
   // Side by side, as the paper compares them.
   const float width = (ImGui::GetContentRegionAvail().x - 20) / 2;
-  for (size_t i = 0; i < s.training.size(); ++i) {
-    if (i > 0) ImGui::SameLine();
-    DrawRun(s.training[i], width);
+  // Every column starts at the same height (SameLine would align the second with the first's
+  // last framed widget, a few pixels lower).
+  const float top = ImGui::GetCursorPosY();
+  PlotRange action, beacon;
+  for (const TrainingView& run : s.training) {
+    action.Include(run.action_loss);
+    beacon.Include(run.beacon_loss);
   }
-  if (s.training.empty()) ImGui::TextDisabled("Nothing trained yet.");
+  for (size_t i = 0; i < s.training.size(); ++i) {
+    if (i > 0) {
+      ImGui::SameLine();
+      ImGui::SetCursorPosY(top);
+    }
+    DrawRun(s.training[i], width, action, beacon);
+  }
+  if (s.training.empty()) {
+    ImGui::TextDisabled(s.training_running ? "Loading the session's data..."
+                                           : "Nothing trained yet.");
+  }
 }
 
 }  // namespace recon::ui

@@ -44,6 +44,11 @@ struct StartTraining {
   int steps = 0;  ///< 0: the session's world's recipe (at most the studio's --train-steps)
 };
 struct CancelTraining {};
+/// Stops the running rollouts; nothing of them is written (the rollouts from before stay).
+struct CancelRollouts {};
+/// Closes the studio (Session > Quit). The application acts on it, not the controller: the
+/// window closes as with its close button, and a headless script ends there.
+struct Quit {};
 struct RunRollouts {
   int tests = 10;
 };
@@ -98,9 +103,9 @@ struct RescanDevices {};
 using StudioCommand =
     std::variant<OpenStep, AssignBeacon, StartCalibration, CancelCalibration, StartRecording,
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
-                 RecordPlay, StartTraining, CancelTraining, RunRollouts, ShowRolloutFrame,
-                 WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay, PlayRollouts,
-                 ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices>;
+                 RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
+                 ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
+                 PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

@@ -62,7 +62,7 @@ struct BeaconView {
   std::optional<std::array<float, 2>> pixel;
   double rate_hz = 0;           ///< updates per second
   double dropout_fraction = 0;  ///< missed updates over the last seconds
-  double noise_m = 0;           ///< spread of the readings while the beacon is still
+  double noise_m = 0;           ///< measured spread of the readings per axis (the last 3 s)
 };
 
 /// A teleop the Record screen offers, and whether it can be used now.
@@ -104,7 +104,12 @@ struct TrainingView {
   int step = 0, steps = 0;
   double seconds = 0;
   std::vector<float> loss_step, action_loss, beacon_loss, total_loss;
+  /// What the losses measure: "nll" (Gaussian negative log-likelihood of standardised targets,
+  /// nats) or "mse-sample" (squared error of a sample).
+  std::string loss = "nll";
   std::string error;
+  /// Why a saved model no longer matches the session (cli::TrainingStaleness), "" when it does.
+  std::string out_of_date;
 };
 
 /// One method's rollouts as the Rollouts screen shows them.
@@ -126,6 +131,9 @@ struct RolloutView {
   uint64_t scenario_seed = 0;
   double scenario_metric = 0;
   bool scenario_succeeded = false;
+  /// Why each test scene failed, in the summary's order (worlds::DescribeFailure; "" for a
+  /// success or a world that cannot say).
+  std::vector<std::string> scene_failures;
   RgbImage frame_image;   ///< the playback's current frame
   uint64_t frame_id = 0;  ///< changes whenever frame_image does
 };
@@ -170,6 +178,8 @@ struct StudioSnapshot {
   bool gripper_closed = false;
   std::vector<EpisodeView> episodes;
   double teacher_seconds = 0;  ///< demonstrations + play + beacon placements so far
+  /// Its parts (the session's teaching ledger): a beacon's placement counts before any take.
+  double teacher_demo_seconds = 0, teacher_play_seconds = 0, teacher_placement_seconds = 0;
 
   // Play data.
   int play_samples = 0;  ///< committed
@@ -179,14 +189,22 @@ struct StudioSnapshot {
   uint64_t play_image_frame = 0;
   std::vector<float> play_reading;  ///< and its beacon reading
 
+  /// While training runs, its live progress; otherwise the models saved in the session.
   std::vector<TrainingView> training;
+  bool training_running = false;
+  bool training_cancelling = false;  ///< Cancel was pressed; the trainers stop at their next step
   std::vector<RolloutView> rollouts;
   bool rollouts_running = false;
+  bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step
+  int rollout_steps_done = 0, rollout_steps_total = 0;  ///< of the running rollouts, all methods
   int rollout_tests = 10;         ///< scenes per rollout run (recon-studio --rollout-tests)
   bool rollouts_playing = false;  ///< the playback advances by itself (10 steps a second)
 
   std::string report_path;  ///< empty until a report was written
 
+  /// What runs now and holds the session ("training", "the rollouts", "a recording", ...), empty
+  /// when nothing does: what a disabled control names when it says why.
+  std::string busy_with;
   std::string status;               ///< one line at the bottom: what is happening
   std::vector<std::string> errors;  ///< shown until dismissed
 };

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "ui/platform/frame_input.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -38,12 +39,12 @@ void DrawScreen(const ScreenContext& context) {
   }
 }
 
-/// The bottom line: what is happening, and the e-stop, always within reach. Escape engages it
-/// from anywhere (even while typing: stopping the arm comes first).
+/// The bottom line: what is happening, and the e-stop, always within reach. F12 engages it from
+/// anywhere (even while typing: stopping the arm comes first); Escape only closes menus.
 void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
   const SafetyView& safety = snapshot.safety;
-  const bool escape = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
-  if (escape && !safety.estop) commands.Push(EmergencyStop{true, "Escape pressed"});
+  const bool key = ImGui::IsKeyPressed(kEmergencyStopKey, false);
+  if (key && !safety.estop) commands.Push(EmergencyStop{true, "F12 pressed"});
   if (safety.estop) {
     ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.0f, 1.0f), "E-STOP ENGAGED (%s): the arm is stopped.",
                        safety.estop_reason.c_str());
@@ -59,7 +60,7 @@ void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 1, 1, 1));
   if (safety.estop) {
     if (Button("Release e-stop")) commands.Push(EmergencyStop{false, ""});
-  } else if (Button("E-STOP (Esc)")) {
+  } else if (Button("E-STOP (F12)")) {
     commands.Push(EmergencyStop{true, "e-stop button"});
   }
   ImGui::PopStyleColor(4);

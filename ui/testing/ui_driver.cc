@@ -138,6 +138,7 @@ void UiDriver::RunScript(const std::string& script, const std::string& source_na
     } catch (const UserError& e) {
       throw UserError(step.where + e.what());
     }
+    if (quit_ && quit_()) return;  // the rest of the script would run in a closed window
   }
 }
 

@@ -40,6 +40,9 @@ class UiDriver {
   /// handled them and published a snapshot showing it). When set, Click waits for it, so the next
   /// line of a script sees the click's effect.
   void SetSettledCheck(std::function<bool()> settled) { settled_ = std::move(settled); }
+  /// Whether the application was asked to close (e.g. Session > Quit): RunScript stops after the
+  /// step that asked.
+  void SetQuitCheck(std::function<bool()> quit) { quit_ = std::move(quit); }
   /// What `wait-idle` waits for (e.g. "the studio's controller has nothing running").
   void SetIdleCheck(std::function<bool()> idle) { idle_ = std::move(idle); }
   /// Runs frames until the idle check holds; UserError after `timeout_s` seconds.
@@ -65,6 +68,7 @@ class UiDriver {
   float mouse_y_ = FrameInput::kNoMouse;
   std::function<bool()> idle_;
   std::function<bool()> settled_;
+  std::function<bool()> quit_;
   std::string screenshot_dir_;
 };
 

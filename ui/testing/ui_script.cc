@@ -2,12 +2,15 @@
 
 #include <imgui.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/core/number_check.h"
+#include "ui/platform/frame_input.h"
 
 namespace recon::ui {
 
@@ -31,8 +34,9 @@ int ParseKey(const std::string& name) {
   const int key = ScriptKeyNamed(name);
   if (key < 0) {
     throw UserError("unknown key '" + name +
-                    "' (enter, tab, escape, backspace, space, up, down, left, right, pageup, "
-                    "pagedown)");
+                    "' (enter, tab, escape, backspace, delete, insert, home, end, space, up, "
+                    "down, left, right, pageup, pagedown, f12; return, esc, pgup, pgdn and "
+                    "arrowup-style names too, in any case)");
   }
   return key;
 }
@@ -100,17 +104,46 @@ ScriptStep ParseStep(const std::string& verb, const std::string& argument) {
 }  // namespace
 
 int ScriptKeyNamed(const std::string& name) {
-  if (name == "enter") return ImGuiKey_Enter;
-  if (name == "tab") return ImGuiKey_Tab;
-  if (name == "escape") return ImGuiKey_Escape;
-  if (name == "backspace") return ImGuiKey_Backspace;
-  if (name == "space") return ImGuiKey_Space;
-  if (name == "up") return ImGuiKey_UpArrow;
-  if (name == "down") return ImGuiKey_DownArrow;
-  if (name == "left") return ImGuiKey_LeftArrow;
-  if (name == "right") return ImGuiKey_RightArrow;
-  if (name == "pageup") return ImGuiKey_PageUp;
-  if (name == "pagedown") return ImGuiKey_PageDown;
+  // The names people write for these keys (xdotool's, browsers', keyboards'), in any case.
+  static const std::pair<const char*, int> kNames[] = {
+      {"enter", ImGuiKey_Enter},
+      {"return", ImGuiKey_Enter},
+      {"kp_enter", ImGuiKey_KeyPadEnter},
+      {"kpenter", ImGuiKey_KeyPadEnter},
+      {"tab", ImGuiKey_Tab},
+      {"escape", ImGuiKey_Escape},
+      {"esc", ImGuiKey_Escape},
+      {"backspace", ImGuiKey_Backspace},
+      {"delete", ImGuiKey_Delete},
+      {"del", ImGuiKey_Delete},
+      {"insert", ImGuiKey_Insert},
+      {"home", ImGuiKey_Home},
+      {"end", ImGuiKey_End},
+      {"space", ImGuiKey_Space},
+      {"spacebar", ImGuiKey_Space},
+      {"up", ImGuiKey_UpArrow},
+      {"arrowup", ImGuiKey_UpArrow},
+      {"down", ImGuiKey_DownArrow},
+      {"arrowdown", ImGuiKey_DownArrow},
+      {"left", ImGuiKey_LeftArrow},
+      {"arrowleft", ImGuiKey_LeftArrow},
+      {"right", ImGuiKey_RightArrow},
+      {"arrowright", ImGuiKey_RightArrow},
+      {"pageup", ImGuiKey_PageUp},
+      {"page_up", ImGuiKey_PageUp},
+      {"prior", ImGuiKey_PageUp},
+      {"pgup", ImGuiKey_PageUp},
+      {"pagedown", ImGuiKey_PageDown},
+      {"page_down", ImGuiKey_PageDown},
+      {"next", ImGuiKey_PageDown},
+      {"pgdn", ImGuiKey_PageDown},
+      {"f12", kEmergencyStopKey},
+  };
+  std::string lower = name;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const auto& [known, key] : kNames) {
+    if (lower == known) return key;
+  }
   return -1;
 }
 

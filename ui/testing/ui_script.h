@@ -33,8 +33,10 @@ inline constexpr int kMaxScriptFrames = 100000;
 /// climbs out with "..", or does not end in .png.
 std::vector<ScriptStep> ParseUiScript(const std::string& script, const std::string& source_name);
 
-/// The ImGuiKey a script's key name stands for (enter, tab, escape, backspace, space, up, down,
-/// left, right, pageup, pagedown), or -1.
+/// The io.KeysDown slot a script's key name stands for, or -1: enter, tab, escape, backspace,
+/// delete, insert, home, end, space, the arrows (up, down, left, right), pageup, pagedown and f12
+/// (the e-stop, kEmergencyStopKey), with the usual synonyms (return, esc, pgup, pgdn,
+/// arrowup, ...), in any case.
 int ScriptKeyNamed(const std::string& name);
 
 }  // namespace recon::ui

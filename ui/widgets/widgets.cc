@@ -55,9 +55,13 @@ bool BeginMenu(const char* label, bool enabled) {
   return open;
 }
 
-bool MenuItem(const char* label, bool enabled) {
+bool MenuItem(const char* label, bool enabled, const std::string& why_disabled) {
   const bool clicked = ImGui::MenuItem(label, nullptr, false, enabled);
   WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  if (!enabled && !why_disabled.empty() &&
+      ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("%s", why_disabled.c_str());
+  }
   return clicked && enabled;
 }
 

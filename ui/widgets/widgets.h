@@ -17,7 +17,7 @@ bool Button(const char* label, bool enabled = true, const std::string& why_disab
 bool Selectable(const char* label, bool selected, bool enabled = true);
 /// A menu of the menu bar (true while open: draw its items, then ImGui::EndMenu) and its items.
 bool BeginMenu(const char* label, bool enabled = true);
-bool MenuItem(const char* label, bool enabled = true);
+bool MenuItem(const char* label, bool enabled = true, const std::string& why_disabled = "");
 /// A one-line text field `width` pixels wide over `buffer`; true when Enter was pressed in it.
 /// Clicking it (or the driver's `click <label>`) focuses it for typing.
 bool InputText(const char* label, char* buffer, size_t size, float width);

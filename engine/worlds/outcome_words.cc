@@ -1,0 +1,27 @@
+#include "engine/worlds/outcome_words.h"
+
+namespace recon::worlds {
+
+namespace {
+
+bool Flag(const std::map<std::string, double>& details, const std::string& key) {
+  const auto it = details.find(key);
+  return it != details.end() && it->second > 0;
+}
+
+}  // namespace
+
+std::string DescribeFailure(const std::map<std::string, double>& details, bool succeeded) {
+  if (succeeded || details.count("grasped") == 0) return "";
+  // In the order a rollout goes: the grasp, the carry, the release.
+  if (!Flag(details, "grasped")) {
+    return Flag(details, "closes_on_nothing")
+               ? "closed the gripper on nothing, never held the toast"
+               : "never picked the toast up";
+  }
+  if (Flag(details, "toast_held")) return "still holding the toast at the end";
+  if (Flag(details, "grip_nearer_bowl")) return "delivered towards the bowl";
+  return "let the toast go off the plate";
+}
+
+}  // namespace recon::worlds
