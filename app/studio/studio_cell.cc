@@ -101,6 +101,8 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   }
   // The new session is good: drop everything that belonged to the old one.
   recorder_.reset();
+  pending_take_.clear();
+  last_deleted_.reset();
   play_.reset();
   replace_.reset();
   report_path_.clear();
@@ -131,7 +133,9 @@ void StudioCell::Handle(const ui::StudioCommand& command) {
 void StudioCell::Tick() {
   const Clock::time_point now = Clock::now();
   PollGamepad(now);
-  if (recorder_ && recorder_->recording()) {
+  if (recorder_ && recorder_->recording() && now < take_starts_) {
+    // The countdown before a person's take: the arm does not move yet.
+  } else if (recorder_ && recorder_->recording()) {
     // A person teleoperating needs the real control rate, whatever --fast says.
     const bool paced = options_.real_time || teleop_mode_ != ui::TeleopMode::kScripted;
     if (!paced || now >= next_tick_) {
@@ -140,7 +144,7 @@ void StudioCell::Tick() {
       arm_health_.Add(Seconds(now));
       if (const Sample* last = recorder_->last()) last_reading_ = last->b;
       beacon_health_.Add(Seconds(now), last_reading_);
-      if (!recorder_->recording()) Commit();
+      if (!recorder_->recording()) TakeEnded();
     }
   } else if (play_ && play_->recording()) {
     if (!options_.real_time || now >= next_tick_) {
@@ -241,12 +245,29 @@ std::string StudioCell::TeleopSource() const {
 void StudioCell::StartDemo(int number, uint64_t seed) {
   teleop_input_ = {};
   teleop_command_ = {};
+  take_starts_ = Clock::now();
+  if (teleop_mode_ != ui::TeleopMode::kScripted) {
+    take_starts_ += std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options_.countdown_s));
+  }
   recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
   teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
 }
 
+void StudioCell::TakeEnded() {
+  if (teleop_mode_ == ui::TeleopMode::kScripted || world_->DemonstrationDone()) return Commit();
+  // A person ran out of time: whether an unfinished take is worth keeping is theirs to say.
+  Changed();
+  pending_take_ =
+      "The take reached its " +
+      std::to_string(static_cast<int>(world_->EpisodeLength() * world_->StepSeconds())) +
+      " s limit before the task was done";
+  status_ = pending_take_ + ": keep it (as not done) or discard it.";
+}
+
 void StudioCell::Commit() {
   Changed();
+  pending_take_.clear();
   const store::EpisodeEntry& e = session_->CommitDemo(recorder_->Take(), replace_);
   status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) + " samples).";
   replace_.reset();
@@ -277,6 +298,10 @@ void StudioCell::CommitPlayChunk() {
 }
 
 void StudioCell::RequireIdle(const char* what) const {
+  if (!pending_take_.empty()) {
+    throw UserError(std::string("cannot ") + what + ": keep or discard the last take first (" +
+                    pending_take_ + ")");
+  }
   if (Busy()) throw UserError(std::string("cannot ") + what + " while something else runs");
 }
 

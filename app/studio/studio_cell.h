@@ -83,6 +83,9 @@ class StudioCell {
   /// take of its configuration where the world groups them (World::DemosPerConfiguration).
   void StartDemo(int number, uint64_t seed);
   void Commit();
+  /// A take's recording has ended by itself: kept when the task is done or the scripted teacher
+  /// gave it; a person's take that hit the time limit waits for Keep or Discard.
+  void TakeEnded();
   /// A chunk is one scenario's worth of play, seeded as `recon record --play` seeds it.
   void StartPlayChunk();
   /// Commits the play chunk just recorded and starts the next one while samples remain.
@@ -128,6 +131,7 @@ class StudioCell {
   void Apply(const ui::StartTraining& c);
   void Apply(const ui::CancelTraining& c);
   void Apply(const ui::CancelRollouts& c);
+  void Apply(const ui::UndoDelete& c);
   void Apply(const ui::Quit&) {}  // the application closes the window (studio_main.cc)
   void Apply(const ui::RunRollouts& c);
   void Apply(const ui::ShowRolloutFrame& c);
@@ -147,6 +151,12 @@ class StudioCell {
   std::unique_ptr<worlds::World> world_;
   std::unique_ptr<teach::DemoRecorder> recorder_;
   std::optional<std::string> replace_;
+  /// The last episode deleted, for Undo: its name, where it went in trash/, and its marks.
+  struct Deleted {
+    std::string name, trash_path;
+    store::EpisodeFlags flags;
+  };
+  std::optional<Deleted> last_deleted_;
   ui::TeleopMode teleop_mode_ = ui::TeleopMode::kScripted;
   ui::TeleopInput teleop_input_;
   teach::TeleopCommand teleop_command_;
@@ -159,6 +169,7 @@ class StudioCell {
   std::vector<float> play_reading_;
   const Clock::time_point started_ = Clock::now();
   Clock::time_point next_tick_ = Clock::now();
+  Clock::time_point take_starts_ = Clock::now();  ///< a person's take, after its countdown
   Clock::time_point next_beacon_ = Clock::now();
   std::vector<float> last_reading_;
   teach::StreamHealth camera_health_{30.0};
@@ -172,6 +183,8 @@ class StudioCell {
   std::string status_;
   std::string report_path_;
   bool estop_ = false;
+  /// Why the take in recorder_ was set aside unfinished (ui::StudioSnapshot::pending_take).
+  std::string pending_take_;
   std::string estop_reason_;
   DeviceScanner scanner_;
 };

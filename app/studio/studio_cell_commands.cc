@@ -53,19 +53,31 @@ void StudioCell::Apply(const ui::StartRecording&) {
 }
 
 void StudioCell::Apply(const ui::StopRecording&) {
-  if (recorder_ && recorder_->recording()) Commit();
+  // Stop and keep, or Keep for a take set aside unfinished.
+  if (recorder_ && (recorder_->recording() || !pending_take_.empty())) Commit();
 }
 
 void StudioCell::Apply(const ui::DiscardRecording&) {
   recorder_.reset();
   replace_.reset();
+  pending_take_.clear();
   status_ = "Recording discarded.";
 }
 
 void StudioCell::Apply(const ui::DeleteEpisode& c) {
   RequireIdle("delete an episode");
-  session_->DeleteEpisode(c.name);
-  status_ = "Moved " + c.name + " to the session's trash.";
+  const store::EpisodeFlags flags = session_->Find(c.name).flags;
+  last_deleted_ = Deleted{c.name, session_->DeleteEpisode(c.name), flags};
+  status_ = "Moved " + c.name + " to the session's trash (Undo brings it back).";
+}
+
+void StudioCell::Apply(const ui::UndoDelete&) {
+  RequireIdle("undo a delete");
+  if (!last_deleted_) throw UserError("nothing deleted to bring back");
+  const Deleted deleted = *last_deleted_;
+  session_->RestoreEpisode(deleted.trash_path, deleted.name, deleted.flags);
+  last_deleted_.reset();
+  status_ = "Brought " + deleted.name + " back from the trash.";
 }
 
 void StudioCell::Apply(const ui::ReRecordEpisode& c) {
@@ -200,9 +212,11 @@ void StudioCell::Apply(const ui::EmergencyStop& c) {
   teleop_command_ = {};
   std::string stopped;
   if (recorder_ && recorder_->recording()) {
-    stopped = "; the demonstration being recorded was discarded";
-    recorder_.reset();
-    replace_.reset();
+    // What was taught so far is the teacher's to keep (as not done) or discard.
+    recorder_->Stop();
+    pending_take_ =
+        "The e-stop stopped the take after " + std::to_string(recorder_->samples()) + " samples";
+    stopped = "; the take so far is set aside: keep it (as not done) or discard it";
   }
   if (play_ && play_->recording()) {
     stopped = "; play recording stopped (" + std::to_string(play_done_) + " samples kept)";

@@ -36,6 +36,14 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s.calibration.points_collected = job.calibration_points;
   s.recording = recorder_ && recorder_->recording();
   s.recording_samples = recorder_ ? recorder_->samples() : 0;
+  s.recording_max_samples = world_->EpisodeLength();
+  s.recording_step_s = world_->StepSeconds();
+  s.pending_take = pending_take_;
+  if (s.recording) {
+    s.countdown_s =
+        std::max(0.0, std::chrono::duration<double>(take_starts_ - Clock::now()).count());
+  }
+  s.undo_delete = last_deleted_ ? last_deleted_->name : "";
   s.teleop = teleop_mode_;
   s.teleop_input = teleop_input_;
   source_->ShowDevices(s);

@@ -28,6 +28,9 @@ struct StudioOptions {
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;
+  /// A person's take (keyboard, gamepad) starts this many seconds after Start, counted down on
+  /// screen, so their hands are on the keys when the arm starts listening; 0: at once.
+  double countdown_s = 3.0;
   int train_steps = 0;  ///< at most this many steps per method; 0: the world's recipe
   int rollout_tests = 10;
   int calibration_points = 12;

@@ -5,6 +5,7 @@
 namespace recon::studio {
 
 using cli::kMaxBeaconNoise_m;
+using cli::kMaxCountdown_s;
 using cli::kMaxDemoNoise_rad_s;
 using cli::kMaxSteps;
 using cli::kMaxTests;
@@ -52,6 +53,10 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
                  "training steps per method (default: the world's recipe: 7500 on the "
                  "tabletop)")
       ->check(WholeBetween(1, kMaxSteps));
+  app.add_option("--countdown", flags.options.countdown_s,
+                 "seconds counted down before a keyboard or gamepad take starts (0: at once)")
+      ->check(NumberBetween(0, kMaxCountdown_s))
+      ->capture_default_str();
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
       ->check(WholeBetween(1, kMaxTests))
       ->capture_default_str();

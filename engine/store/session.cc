@@ -456,7 +456,7 @@ EpisodeEntry& Session::FindMutable(const std::string& name) {
   return const_cast<EpisodeEntry&>(Find(name));
 }
 
-void Session::DeleteEpisode(const std::string& name) {
+std::string Session::DeleteEpisode(const std::string& name) {
   RequireWritable();
   const EpisodeEntry entry = Find(name);
   fs::create_directories(Path(kTrashFolder));
@@ -468,6 +468,30 @@ void Session::DeleteEpisode(const std::string& name) {
                             [&](const EpisodeEntry& e) { return e.name == name; }),
              list.end());
   if (manifest_.episode_flags.erase(name) > 0) SaveManifestNow();
+  IndexChanged();
+  return target;
+}
+
+void Session::RestoreEpisode(const std::string& trash_path, const std::string& name,
+                             const EpisodeFlags& flags) {
+  RequireWritable();
+  const bool demo = name.rfind("demo_", 0) == 0;
+  const auto& list = demo ? demos_ : play_;
+  if (std::any_of(list.begin(), list.end(),
+                  [&](const EpisodeEntry& e) { return e.name == name; })) {
+    throw UserError("cannot restore " + name + ": the session has an episode of that name again");
+  }
+  if (!fs::is_regular_file(trash_path)) {
+    throw UserError("cannot restore " + name + ": " + trash_path + " is no longer in trash/");
+  }
+  const std::string folder = Path(demo ? kDemoFolder : kPlayFolder);
+  ReplaceFile(trash_path, (fs::path(folder) / (name + ".h5")).string());
+  SyncDirectory(folder);
+  if (!(flags == EpisodeFlags{})) {
+    manifest_.episode_flags[name] = flags;
+    SaveManifestNow();
+  }
+  Scan();  // reads the restored file as Open does (and checks it)
   IndexChanged();
 }
 

@@ -96,9 +96,13 @@ class Session {
                                  const std::optional<std::string>& replace = std::nullopt);
   const EpisodeEntry& CommitPlay(const PlayRecord& record);
 
-  /// Moves an episode's file to trash/ (recoverable by moving it back). UserError for an
-  /// unknown name.
-  void DeleteEpisode(const std::string& name);
+  /// Moves an episode's file to trash/ and returns where it went (RestoreEpisode takes it back).
+  /// UserError for an unknown name.
+  std::string DeleteEpisode(const std::string& name);
+  /// Undoes DeleteEpisode: moves `trash_path` back as episode `name` with its `flags`. UserError
+  /// when the file is gone from trash/ or `name` is taken again.
+  void RestoreEpisode(const std::string& trash_path, const std::string& name,
+                      const EpisodeFlags& flags);
   void MarkBad(const std::string& name, bool bad);
   void SetSplit(const std::string& name, const std::string& split);
   /// Assigns `valid_fraction` of the demonstrations (at least one if the fraction is positive

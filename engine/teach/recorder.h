@@ -52,6 +52,9 @@ class DemoRecorder {
   const Sample* last() const {
     return record_.episode.samples.empty() ? nullptr : &record_.episode.samples.back();
   }
+  /// Ends the recording here without handing it over: what was recorded so far stays, for
+  /// Take() or to be dropped (an e-stop mid-take; the teacher decides).
+  void Stop() { recording_ = false; }
   /// Ends the recording (if still running) and hands over the episode, with its metadata.
   store::DemoRecord Take();
 

@@ -47,6 +47,7 @@ class StudioControllerTest : public ::testing::Test {
     options.session_dir = session.empty() ? "" : (dir_ / session).string();
     options.recent_sessions_file = (dir_ / "config" / "recent.json").string();
     options.real_time = false;
+    options.countdown_s = 0;  // a person's take starts at once (the countdown has its own test)
     return options;
   }
 
@@ -177,8 +178,9 @@ TEST_F(StudioControllerTest, AGamepadDrivesTheArmAndItsUnpluggingIsReported) {
   EXPECT_TRUE(listed);
 }
 
-// The e-stop ends a recording without keeping it, refuses whatever would move the arm until it
-// is released, and works with no session open; the envelope's count shows on the Cell screen.
+// The e-stop ends a recording and sets the take aside for the teacher to keep or discard,
+// refuses whatever would move the arm until it is released, and works with no session open;
+// the envelope's count shows on the Cell screen.
 TEST_F(StudioControllerTest, TheEStopEndsARecordingAndRefusesMotionUntilReleased) {
   StudioOptions options = Options();
   StudioController controller(options);
@@ -191,7 +193,16 @@ TEST_F(StudioControllerTest, TheEStopEndsARecordingAndRefusesMotionUntilReleased
   EXPECT_FALSE(s.recording);
   EXPECT_TRUE(s.episodes.empty());
   EXPECT_EQ(s.safety.estop_reason, "test");
-  EXPECT_THAT(s.status, HasSubstr("discarded"));
+  EXPECT_THAT(s.status, HasSubstr("set aside"));
+  EXPECT_THAT(s.pending_take, HasSubstr("The e-stop stopped the take after"));
+  // Nothing else starts until the teacher has decided.
+  controller.Push(ui::StartRecording{});
+  s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+  EXPECT_THAT(s.errors[0], HasSubstr("cannot record: keep or discard the last take first"));
+  controller.Push(ui::DismissErrors{});
+  controller.Push(ui::DiscardRecording{});
+  s = WaitFor(controller, [](const auto& now) { return now.pending_take.empty(); });
+  EXPECT_TRUE(s.episodes.empty());
 
   controller.Push(ui::SetTeleopMode{ui::TeleopMode::kScripted});
   controller.Push(ui::StartRecording{});
@@ -218,6 +229,83 @@ TEST_F(StudioControllerTest, TheEStopEndsARecordingAndRefusesMotionUntilReleased
   picker.Push(ui::EmergencyStop{true, "no session"});
   s = WaitFor(picker, [](const auto& now) { return now.safety.estop; });
   EXPECT_TRUE(s.errors.empty());
+}
+
+// A take the e-stop stopped is kept when the teacher says so, as a demonstration not done.
+TEST_F(StudioControllerTest, ATakeSetAsideByTheEStopCanBeKeptAsNotDone) {
+  StudioController controller(Options());
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+  controller.Push(ui::StartRecording{});
+  WaitFor(controller, [](const auto& now) { return now.recording_samples >= 3; });
+  controller.Push(ui::EmergencyStop{true, "test"});
+  ui::StudioSnapshot s =
+      WaitFor(controller, [](const auto& now) { return !now.pending_take.empty(); });
+  controller.Push(ui::StopRecording{});  // "Keep as not done"
+  s = WaitFor(controller, [](const auto& now) { return !now.episodes.empty(); });
+  ASSERT_EQ(s.episodes.size(), 1u);
+  EXPECT_FALSE(s.episodes[0].succeeded);
+  EXPECT_GE(s.episodes[0].samples, 3);
+  EXPECT_TRUE(s.pending_take.empty());
+}
+
+// A person's take that runs into the time limit (20 s at the arm's 10 Hz) is not committed by
+// itself: it waits for Keep or Discard, and Discard keeps nothing.
+TEST_F(StudioControllerTest, AKeyboardTakeAtTheTimeLimitWaitsForTheTeacher) {
+  StudioController controller(Options());
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+  controller.Push(ui::StartRecording{});
+  ui::StudioSnapshot s = WaitFor(
+      controller, [](const auto& now) { return !now.pending_take.empty(); }, 120);
+  EXPECT_THAT(s.pending_take, HasSubstr("reached its 20 s limit before the task was done"));
+  EXPECT_FALSE(s.recording);
+  EXPECT_TRUE(s.episodes.empty()) << "nothing is committed unasked";
+  controller.Push(ui::DiscardRecording{});
+  s = WaitFor(controller, [](const auto& now) { return now.pending_take.empty(); });
+  EXPECT_TRUE(s.episodes.empty());
+}
+
+// Delete is undoable: the episode comes back from the trash with its mark.
+TEST_F(StudioControllerTest, UndoBringsADeletedDemonstrationBack) {
+  StudioController controller(Options());
+  controller.Push(ui::StartRecording{});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return !now.episodes.empty(); });
+  const std::string name = s.episodes[0].name;
+  const int samples = s.episodes[0].samples;
+  controller.Push(ui::MarkEpisodeBad{name, true});
+  controller.Push(ui::DeleteEpisode{name});
+  s = WaitFor(controller, [](const auto& now) { return now.episodes.empty(); });
+  EXPECT_EQ(s.undo_delete, name);
+  controller.Push(ui::UndoDelete{});
+  s = WaitFor(controller, [](const auto& now) { return !now.episodes.empty(); });
+  ASSERT_EQ(s.episodes.size(), 1u);
+  EXPECT_EQ(s.episodes[0].name, name);
+  EXPECT_EQ(s.episodes[0].samples, samples);
+  EXPECT_TRUE(s.episodes[0].bad);
+  EXPECT_EQ(s.undo_delete, "");
+  EXPECT_TRUE(s.errors.empty());
+}
+
+// A person's take starts after a countdown: the arm takes no step and nothing is recorded
+// until it has run out, and then the take runs.
+TEST_F(StudioControllerTest, AKeyboardTakeStartsAfterItsCountdown) {
+  StudioOptions options = Options();
+  options.countdown_s = 4;
+  StudioController controller(options);
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+  ui::TeleopInput right;
+  right.screen_right = 1;
+  controller.Push(ui::StartRecording{});
+  controller.Push(right);  // keys held during the countdown move nothing yet
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  EXPECT_GT(s.countdown_s, 0.0);
+  EXPECT_LE(s.countdown_s, 4.0);
+  EXPECT_EQ(s.recording_samples, 0);
+  s = WaitFor(
+      controller, [](const auto& now) { return now.recording_samples > 0; }, 30);
+  EXPECT_EQ(s.countdown_s, 0.0);
+  controller.Push(ui::DiscardRecording{});
+  s = WaitFor(controller, [](const auto& now) { return !now.recording; });
+  EXPECT_TRUE(s.episodes.empty());
 }
 
 // The Cell screen's list of what is plugged in follows the device folder: a port that appears is

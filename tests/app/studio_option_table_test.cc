@@ -32,7 +32,7 @@ void PrintTo(const StudioOptionCase& c, std::ostream* os) { *os << c.option; }
 std::vector<StudioOptionCase> NumericOptions() {
   return {{"--seed", true},        {"--noise", false},        {"--demo-noise", false},
           {"--train-steps", true}, {"--rollout-tests", true}, {"--frames", true},
-          {"--width", true},       {"--height", true}};
+          {"--width", true},       {"--height", true},        {"--countdown", false}};
 }
 
 TEST(StudioOptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {

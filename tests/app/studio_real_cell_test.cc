@@ -88,6 +88,7 @@ class StudioRealCellTest : public ::testing::Test {
     options.cell_profile = (dir_ / "cell.json").string();
     options.calibration_file = (dir_ / "cal.json").string();
     options.dev_dir = (dir_ / "no-dev").string();
+    options.countdown_s = 0;  // a person's take starts at once
     return options;
   }
 
@@ -176,8 +177,10 @@ TEST_F(StudioRealCellTest, TeachesADemonstrationOnTheRealDevicesAndTheEStopReach
   s = WaitFor(controller, [](const auto& now) { return now.safety.estop && !now.recording; });
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   for (double v : robot_->qd_rad_s()) EXPECT_NEAR(v, 0.0, 1e-6);
-  EXPECT_EQ(s.episodes.size(), 1u);          // the stopped take was not kept
-  EXPECT_EQ(s.safety.estop_reason, "test");  // the guarded arm's own latch says so
+  EXPECT_EQ(s.episodes.size(), 1u);                  // the stopped take was not kept
+  EXPECT_EQ(s.safety.estop_reason, "test");          // the guarded arm's own latch says so
+  EXPECT_THAT(s.pending_take, HasSubstr("e-stop"));  // set aside for the teacher to decide
+  controller.Push(ui::DiscardRecording{});
   controller.Push(ui::RunRollouts{1});
   s = WaitFor(controller, [](const auto& now) { return now.errors.size() >= 2; });
   EXPECT_THAT(s.errors.back(), HasSubstr("e-stop is engaged"));

@@ -123,6 +123,37 @@ TEST(SessionTest, AppendingContinuesNumberingAndDeletedNamesAreNeverReused) {
               HasSubstr("has no episode 'demo_9'"));
 }
 
+// Undo of a delete: the file comes back from trash/ under its name, with its marks, and the
+// session reads it as it did; it cannot come back twice or over a name taken again.
+TEST(SessionTest, ADeletedEpisodeComesBackWithItsMarks) {
+  TempDir dir("restore");
+  {
+    Session session = Session::Create(dir.Path("s"), SmallManifest());
+    session.CommitDemo(SyntheticDemo(3, 1));
+    session.CommitDemo(SyntheticDemo(5, 2));
+    session.MarkBad("demo_1", true);
+    const EpisodeFlags flags = session.Find("demo_1").flags;
+    const std::string trash = session.DeleteEpisode("demo_1");
+    EXPECT_TRUE(fs::exists(trash));
+    ASSERT_EQ(session.demos().size(), 1u);
+    session.RestoreEpisode(trash, "demo_1", flags);
+    ASSERT_EQ(session.demos().size(), 2u);
+    EXPECT_EQ(session.Find("demo_1").meta.num_samples, 5);
+    EXPECT_TRUE(session.Find("demo_1").flags.bad);
+    EXPECT_FALSE(fs::exists(trash));
+    EXPECT_THAT(ErrorOf([&] { session.RestoreEpisode(trash, "demo_1", flags); }),
+                HasSubstr("has an episode of that name again"));
+    session.DeleteEpisode("demo_0");
+    EXPECT_THAT(ErrorOf([&] { session.RestoreEpisode(trash, "demo_0", {}); }),
+                HasSubstr("is no longer in trash/"));
+  }
+  // What was restored is what a reopened session sees.
+  const Session reopened = Session::Open(dir.Path("s"));
+  ASSERT_EQ(reopened.demos().size(), 1u);
+  EXPECT_EQ(reopened.demos()[0].name, "demo_1");
+  EXPECT_TRUE(reopened.demos()[0].flags.bad);
+}
+
 TEST(SessionTest, ReRecordingReplacesAnEpisodeAndKeepsTheOldTake) {
   TempDir dir("rerecord");
   Session session = Session::Create(dir.Path("s"), SmallManifest());

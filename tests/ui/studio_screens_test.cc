@@ -457,3 +457,54 @@ TEST(StudioCommandTest, TheSessionMenuHasQuit) {
 
 }  // namespace
 }  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+// A take shows its time limit, warns in its last 5 s, and once set aside unfinished waits for
+// Keep or Discard with nothing else on the list clickable.
+TEST(StudioCommandTest, ATakeShowsItsLimitAndAnUnfinishedOneWaitsForKeepOrDiscard) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  s.teleop = TeleopMode::kKeyboard;
+  s.recording = true;
+  s.recording_samples = 170;
+  s.recording_max_samples = 200;
+  s.recording_step_s = 0.1;
+  harness.Show(s);
+  EXPECT_TRUE(harness.driver().Drawn("Stop and keep"));
+
+  StudioSnapshot pending = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  pending.pending_take = "The take reached its 20 s limit before the task was done";
+  harness.Show(pending);
+  harness.Commands();
+  EXPECT_FALSE(harness.driver().Drawn("Start recording"));
+  EXPECT_THROW(harness.driver().Click("Delete##demo_0"), UserError);
+  harness.driver().Click("Keep as not done");
+  harness.driver().Click("Discard##pending");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<StopRecording>(commands[0]));
+  EXPECT_TRUE(std::holds_alternative<DiscardRecording>(commands[1]));
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+TEST(StudioCommandTest, AnUndoBringsTheLastDeletedEpisodeBack) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  EXPECT_FALSE(harness.driver().Drawn("Undo delete demo_2##undo-delete"));
+  s.undo_delete = "demo_2";
+  harness.Show(s);
+  harness.driver().Click("Undo delete demo_2##undo-delete");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<UndoDelete>(commands[0]));
+}
+
+}  // namespace
+}  // namespace recon::ui

@@ -1,5 +1,8 @@
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "ui/screens/screens.h"
 #include "ui/widgets/camera_view.h"
 #include "ui/widgets/widgets.h"
@@ -82,8 +85,30 @@ void DrawRecordScreen(const ScreenContext& context) {
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();
-  if (s.recording) {
-    StatusText(Status::kBusy, Format("Recording: %d samples", s.recording_samples));
+  if (!s.pending_take.empty()) {
+    // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked.
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520);
+    StatusText(Status::kWarning, s.pending_take + ".");
+    ImGui::PopTextWrapPos();
+    if (Button("Keep as not done")) context.commands.Push(StopRecording{});
+    ImGui::SameLine();
+    if (Button("Discard##pending")) context.commands.Push(DiscardRecording{});
+  } else if (s.recording && s.countdown_s > 0) {
+    StatusText(Status::kBusy,
+               Format("Get ready: the take starts in %.0f s", std::ceil(s.countdown_s)));
+    if (Button("Discard")) context.commands.Push(DiscardRecording{});
+  } else if (s.recording) {
+    // The time limit in view, and a warning before it ends the take.
+    const double elapsed = s.recording_samples * s.recording_step_s;
+    const double limit = s.recording_max_samples * s.recording_step_s;
+    StatusText(Status::kBusy, Format("Recording: %d samples, %.1f s of %.0f s", s.recording_samples,
+                                     elapsed, limit));
+    ImGui::ProgressBar(limit > 0 ? static_cast<float>(elapsed / limit) : 0.0f, ImVec2(520, 0), "");
+    if (s.teleop != TeleopMode::kScripted && limit > 0 && limit - elapsed <= 5.0) {
+      StatusText(Status::kWarning,
+                 Format("%.0f s left: the take ends at %.0f s (then keep or discard it)",
+                        std::max(0.0, limit - elapsed), limit));
+    }
     if (Button("Stop and keep")) context.commands.Push(StopRecording{});
     ImGui::SameLine();
     if (Button("Discard")) context.commands.Push(DiscardRecording{});
@@ -93,6 +118,13 @@ void DrawRecordScreen(const ScreenContext& context) {
   if (blocked && !why.empty()) ImGui::TextWrapped("%s", why.c_str());
   ImGui::Spacing();
   ImGui::Text("Demonstrations (%zu)", s.episodes.size());
+  if (!s.undo_delete.empty()) {
+    ImGui::SameLine();
+    if (Button(("Undo delete " + s.undo_delete + "##undo-delete").c_str(),
+               !s.recording && s.pending_take.empty(), "finish the take first")) {
+      context.commands.Push(UndoDelete{});
+    }
+  }
   if (ImGui::BeginTable("episodes", 5,
                         ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
                         ImVec2(0, 320))) {
@@ -118,7 +150,7 @@ void DrawRecordScreen(const ScreenContext& context) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(!e.problem.empty() ? "damaged" : e.succeeded ? "yes" : "no");
       ImGui::TableNextColumn();
-      const bool idle = !s.recording && !blocked;
+      const bool idle = !s.recording && !blocked && s.pending_take.empty();
       if (Button(("Delete##" + e.name).c_str(), idle)) {
         context.commands.Push(DeleteEpisode{e.name});
       }

@@ -29,6 +29,8 @@ struct DiscardRecording {};
 struct DeleteEpisode {
   std::string name;
 };
+/// Brings the last deleted episode back from the session's trash, with its marks.
+struct UndoDelete {};
 struct ReRecordEpisode {
   std::string name;
 };
@@ -105,7 +107,8 @@ using StudioCommand =
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
-                 PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit>;
+                 PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
+                 UndoDelete>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

@@ -170,6 +170,14 @@ struct StudioSnapshot {
   // Recording.
   bool recording = false;
   int recording_samples = 0;
+  int recording_max_samples = 0;  ///< where a take ends by itself (the world's episode length)
+  double recording_step_s = 0.1;  ///< seconds per sample (the control period)
+  double countdown_s = 0;         ///< left before a person's take starts (0: it runs)
+  /// A take that ended without the task done (it reached the time limit, or the e-stop stopped
+  /// it): why, while it waits for the teacher to keep it (as not done) or discard it; "" when
+  /// there is none.
+  std::string pending_take;
+  std::string undo_delete;  ///< the episode "Undo delete" brings back; "" when there is none
   TeleopMode teleop = TeleopMode::kScripted;
   std::vector<TeleopChoice> teleop_choices;
   TeleopInput teleop_input;       ///< what the keys ask for now (the Record screen sends changes)
