@@ -28,8 +28,8 @@ constexpr int kHeight = 800;
 /// A headless studio window drawing whatever snapshot the test sets.
 class StudioHarness {
  public:
-  StudioHarness()
-      : window_({kWidth, kHeight, 16.0f}),
+  explicit StudioHarness(int width = kWidth, int height = kHeight)
+      : window_({width, height, 16.0f}),
         driver_(window_, [this] { DrawStudio(snapshot_, commands_, textures_); }) {}
 
   void Show(const StudioSnapshot& snapshot) {
@@ -65,6 +65,16 @@ TEST_P(StudioScreenTest, MatchesItsGolden) {
   StudioHarness harness;
   harness.Show(SnapshotAt(c.progress, c.step));
   EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath(c.name)));
+}
+
+// The smallest window the studio supports, 1024 x 640: the camera views shrink, tables scroll
+// sideways instead of clipping, and both rollout panels stay on screen.
+TEST_P(StudioScreenTest, MatchesItsGoldenAt1024x640) {
+  const ScreenCase& c = GetParam();
+  StudioHarness harness(1024, 640);
+  harness.Show(SnapshotAt(c.progress, c.step));
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath(std::string(c.name) + "_1024x640")));
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -1,5 +1,7 @@
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "ui/screens/screens.h"
 #include "ui/widgets/camera_view.h"
 #include "ui/widgets/widgets.h"
@@ -39,19 +41,24 @@ void DrawBeaconsScreen(const ScreenContext& context) {
                 pending.c_str());
   }
   context.textures.camera.Update(s.camera, s.camera_frame);
+  // The view takes at most half the room (480 px), the beacons' panel the rest, from 1024 px up.
+  const float room = ImGui::GetContentRegionAvail().x;
+  const float camera_width = std::clamp(room * 0.5f, 240.0f, 480.0f);
+  const float panel_width = std::max(200.0f, room - camera_width - 16);
   ImGui::BeginGroup();
   const std::optional<std::string> clicked =
-      CameraView("camera##beacons", context.textures.camera, 480.0f, s.beacons,
+      CameraView("camera##beacons", context.textures.camera, camera_width, s.beacons,
                  busy ? std::vector<ObjectView>{} : s.objects);
   ImGui::EndGroup();
   if (clicked && !pending.empty()) context.commands.Push(AssignBeacon{pending, *clicked});
   ImGui::SameLine();
   ImGui::BeginGroup();
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + panel_width);
   for (const BeaconView& b : s.beacons) {
     ImGui::PushID(b.name.c_str());
     ImGui::Text("Beacon %s (%s)", b.name.c_str(), b.quantity.c_str());
     const std::string preview = b.object.empty() ? "choose an object" : b.object;
-    ImGui::SetNextItemWidth(220);
+    ImGui::SetNextItemWidth(std::min(220.0f, panel_width - 60));
     if (ImGui::BeginCombo("marks##object", preview.c_str())) {
       for (const ObjectView& o : s.objects) {
         if (ImGui::Selectable(o.name.c_str(), o.name == b.object) && !busy) {
@@ -62,13 +69,14 @@ void DrawBeaconsScreen(const ScreenContext& context) {
     }
     StatusText(b.reading.empty() ? Status::kOff : Status::kOk, ReadingText(b));
     // Measured, not configured: the readings' spread over the last 3 s, per axis.
-    ImGui::Text("%.1f Hz, %.0f%% dropped, spread %.1f cm per axis (last 3 s, object still)",
-                b.rate_hz, 100.0 * b.dropout_fraction, 100.0 * b.noise_m);
+    ImGui::TextWrapped("%.1f Hz, %.0f%% dropped, spread %.1f cm per axis (last 3 s, object still)",
+                       b.rate_hz, 100.0 * b.dropout_fraction, 100.0 * b.noise_m);
     ImGui::Separator();
     ImGui::PopID();
   }
   if (s.beacons.empty()) ImGui::TextDisabled("This task uses no beacons.");
   if (busy && !why.empty()) ImGui::TextWrapped("%s", why.c_str());
+  ImGui::PopTextWrapPos();
   ImGui::EndGroup();
 }
 

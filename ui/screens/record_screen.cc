@@ -11,7 +11,13 @@ namespace recon::ui {
 
 namespace {
 
+// The live view's width at most; narrower windows get a narrower view, so the episode list keeps
+// its columns (from 1024 x 640 up).
 constexpr float kCameraWidth = 420.0f;
+
+float CameraWidth() {
+  return std::clamp(ImGui::GetContentRegionAvail().x * 0.45f, 240.0f, kCameraWidth);
+}
 
 bool KeyDown(ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)); }
 bool KeyPressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
@@ -34,7 +40,7 @@ void ReadTeleopKeys(const ScreenContext& context) {
   }
 }
 
-void DrawTeleopChoice(const ScreenContext& context) {
+void DrawTeleopChoice(const ScreenContext& context, float width) {
   const StudioSnapshot& s = context.snapshot;
   ImGui::TextUnformatted("Teleop:");
   for (const TeleopChoice& choice : s.teleop_choices) {
@@ -56,7 +62,7 @@ void DrawTeleopChoice(const ScreenContext& context) {
                            "demonstration."
                          : nullptr;
   if (help != nullptr) {
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + kCameraWidth);
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("%s", help);
     ImGui::PopStyleColor();
@@ -74,8 +80,9 @@ void DrawRecordScreen(const ScreenContext& context) {
   ReadTeleopKeys(context);
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
-  CameraView("camera##record", context.textures.camera, kCameraWidth, s.beacons, {});
-  DrawTeleopChoice(context);
+  const float camera_width = CameraWidth();
+  CameraView("camera##record", context.textures.camera, camera_width, s.beacons, {});
+  DrawTeleopChoice(context, camera_width);
   ImGui::Text("Grip at (%.2f, %.2f, %.2f) m, gripper %s", s.grip_m[0], s.grip_m[1], s.grip_m[2],
               s.gripper_closed ? "closed" : "open");
   // The parts, so 4.6 s before the first take reads as what it is (placing the beacons).
@@ -126,13 +133,15 @@ void DrawRecordScreen(const ScreenContext& context) {
     }
   }
   if (ImGui::BeginTable("episodes", 5,
-                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                            ImGuiTableFlags_ScrollX,
                         ImVec2(0, 320))) {
     ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, 120);
     ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, 64);
     ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, 60);
     ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, 40);
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
+    // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 240);
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());

@@ -55,15 +55,23 @@ void DrawPlayback(const ScreenContext& context) {
   if (Button(">|", idle)) context.commands.Push(ShowRolloutFrame{scenario, frames - 1});
   ImGui::SameLine(0, 24);
   int slider = frame;
-  ImGui::SetNextItemWidth(300);
-  if (ImGui::SliderInt("##frame", &slider, 0, std::max(0, frames - 1), "step %d") && idle) {
+  const float step_text = ImGui::CalcTextSize("step 0000, 000.0 s").x;
+  ImGui::SetNextItemWidth(
+      std::clamp(ImGui::GetContentRegionAvail().x - step_text - 16, 100.0f, 300.0f));
+  // The step is written beside the slider, never under its handle.
+  if (ImGui::SliderInt("##frame", &slider, 0, std::max(0, frames - 1), "") && idle) {
     context.commands.Push(ShowRolloutFrame{scenario, slider});
   }
   ImGui::SameLine();
-  ImGui::Text("%.1f s", 0.1 * frame);
+  ImGui::Text("step %d, %.1f s", frame, 0.1 * frame);
 
   ImageTexture* textures[2] = {&context.textures.rollout, &context.textures.rollout_other};
-  const float width = 480.0f;
+  // Two frames side by side that fit the screen from 1024 x 640 up: at most 480 px wide, and as
+  // high as the space under the controls allows (the frames are 4:3), with a line for the outcome.
+  const ImVec2 room = ImGui::GetContentRegionAvail();
+  const float line = ImGui::GetTextLineHeightWithSpacing();
+  const float width =
+      std::max(80.0f, std::min({480.0f, (room.x - 16) / 2, (room.y - 2.5f * line) * 4.0f / 3.0f}));
   for (size_t i = 0; i < shown.size() && i < 2; ++i) {
     const RolloutView& r = *shown[i];
     if (i > 0) ImGui::SameLine(0, 16);
@@ -73,9 +81,13 @@ void DrawPlayback(const ScreenContext& context) {
       ImGui::Image(textures[i]->id(),
                    ImVec2(width, width * textures[i]->height() / textures[i]->width()));
     }
+    // Wrapped to the frame's width, so a long outcome never pushes the other panel away.
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+    // The outcome first, the number on a line of its own (a wrapped line never splits it).
     StatusText(r.has_success ? (r.scenario_succeeded ? Status::kOk : Status::kError) : Status::kOff,
-               Format("%s: %s %.3f%s", r.label.c_str(), r.metric_name.c_str(), r.scenario_metric,
-                      r.has_success ? (r.scenario_succeeded ? ", success" : ", failed") : ""));
+               r.label + (r.has_success ? (r.scenario_succeeded ? ": success" : ": failed") : ""));
+    ImGui::TextDisabled("%s: %.3f", r.metric_name.c_str(), r.scenario_metric);
+    ImGui::PopTextWrapPos();
     // What went wrong, as the summary's details tell it (the same words as the report's).
     const size_t scene = static_cast<size_t>(r.scenario);
     if (!r.scenario_succeeded && scene < r.scene_failures.size() &&

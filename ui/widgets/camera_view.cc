@@ -31,8 +31,13 @@ std::optional<std::string> CameraView(const char* id, const ImageTexture& textur
     draw->AddCircle(at, radius,
                     hovered ? IM_COL32(255, 255, 255, 255) : IM_COL32(255, 255, 255, 140), 32,
                     hovered ? 3.0f : 1.5f);
-    draw->AddText(ImVec2(at.x + radius + 4, at.y - 8), IM_COL32(255, 255, 255, 230),
-                  object.name.c_str());
+    // On a dark backdrop: a white name on the white plate could not be read.
+    const ImVec2 name_at(at.x + radius + 4, at.y - 8);
+    const ImVec2 name_size = ImGui::CalcTextSize(object.name.c_str());
+    draw->AddRectFilled(ImVec2(name_at.x - 2, name_at.y),
+                        ImVec2(name_at.x + name_size.x + 2, name_at.y + name_size.y),
+                        IM_COL32(0, 0, 0, 120), 3.0f);
+    draw->AddText(name_at, IM_COL32(255, 255, 255, 230), object.name.c_str());
     if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) clicked = object.name;
     // Registered so the test driver can click an object by name, as a teacher clicks the plate.
     ImGui::SetCursorScreenPos(ImVec2(at.x - radius, at.y - radius));
@@ -47,8 +52,15 @@ std::optional<std::string> CameraView(const char* id, const ImageTexture& textur
     const ImU32 colour = IM_COL32(230, 159, 0, 255);  // Okabe-Ito orange, the beacon colour
     draw->AddCircle(at, 0.6f * radius, colour, 32, 3.0f);
     draw->AddCircleFilled(at, 3.0f, colour);
-    draw->AddText(ImVec2(at.x + 0.6f * radius + 4, at.y + 4), colour,
-                  ("beacon " + beacon.name).c_str());
+    // Centred under the marker: an object's name is written to its right, and a beacon sits on
+    // an object, so beside it the two labels would overlap.
+    const std::string label = "beacon " + beacon.name;
+    const ImVec2 label_size = ImGui::CalcTextSize(label.c_str());
+    const ImVec2 label_at(at.x - 0.5f * label_size.x, at.y + 0.6f * radius + 4);
+    draw->AddRectFilled(ImVec2(label_at.x - 2, label_at.y),
+                        ImVec2(label_at.x + label_size.x + 2, label_at.y + label_size.y),
+                        IM_COL32(0, 0, 0, 120), 3.0f);
+    draw->AddText(label_at, colour, label.c_str());
   }
   ImGui::SetCursorScreenPos(ImVec2(origin.x, origin.y + size.y + ImGui::GetStyle().ItemSpacing.y));
   ImGui::Dummy(ImVec2(0, 0));
