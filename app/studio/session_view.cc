@@ -132,6 +132,11 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
                           e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
   }
   s.play_samples = static_cast<int>(session.PlaySamples());
+  // A report written before (by the studio or `recon report`) can be opened too.
+  if (const fs::path report = fs::path(session.dir()) / "report" / "report.html";
+      fs::exists(report)) {
+    s.report_path = report.string();
+  }
   const nlohmann::json ledger = cli::TeachingLedgerJson(session);
   s.teacher_seconds = ledger["recon_play_total_s"].get<double>();
   s.teacher_demo_seconds = ledger["demonstrations_s"].get<double>();

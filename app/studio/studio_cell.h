@@ -132,6 +132,7 @@ class StudioCell {
   void Apply(const ui::CancelTraining& c);
   void Apply(const ui::CancelRollouts& c);
   void Apply(const ui::UndoDelete& c);
+  void Apply(const ui::OpenReport& c);
   void Apply(const ui::Quit&) {}  // the application closes the window (studio_main.cc)
   void Apply(const ui::RunRollouts& c);
   void Apply(const ui::ShowRolloutFrame& c);

@@ -1,8 +1,14 @@
 // StudioCell's commands: what each of the UI's commands does to the session and the cell.
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <functional>
+#include <thread>
 
 #include "app/cli/session_report_builder.h"
 #include "app/cli/session_training.h"
@@ -189,6 +195,28 @@ void StudioCell::Apply(const ui::WriteReport&) {
   RequireIdle("write the report");
   report_path_ = cli::WriteReportForSession(*session_);
   status_ = "Wrote " + report_path_ + ".";
+}
+
+void StudioCell::Apply(const ui::OpenReport&) {
+  const fs::path report = fs::path(session_->dir()) / "report" / "report.html";
+  if (!fs::exists(report)) {
+    throw UserError("write the report first: " + report.string() + " does not exist");
+  }
+  if (options_.open_command.empty()) {
+    throw UserError("no program to open the report with; it is at " + report.string());
+  }
+  // Started, not waited for: an opener may run until the browser closes. A thread reaps it.
+  const std::string program = options_.open_command;
+  const std::string path = report.string();
+  char* argv[] = {const_cast<char*>(program.c_str()), const_cast<char*>(path.c_str()), nullptr};
+  pid_t pid = 0;
+  if (const int error = posix_spawnp(&pid, program.c_str(), nullptr, nullptr, argv, environ);
+      error != 0) {
+    throw UserError("cannot open the report with '" + program + "' (" + std::strerror(error) +
+                    "); it is at " + path);
+  }
+  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
+  status_ = "Opened " + path + " with " + program + ".";
 }
 
 void StudioCell::Apply(const ui::DismissErrors&) { errors_.clear(); }

@@ -76,7 +76,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
                                       : "";
   s.rollout_tests = options_.rollout_tests;
   ShowPlayback(s);
-  s.report_path = report_path_;
+  if (!report_path_.empty()) s.report_path = report_path_;  // else the session view's
   s.errors = errors_;
   s.status = job.running ? std::string("Running ") + JobKindName(*job.kind) + "..." : status_;
 }

@@ -41,6 +41,9 @@ struct StudioOptions {
   std::string cell_profile;
   /// A calibration file (recon calibrate --out) to attach to the session when it opens.
   std::string calibration_file;
+  /// The program that shows the written report to the teacher, given its path (a desktop's
+  /// opener, which starts the browser); "Open in browser" runs it.
+  std::string open_command = "xdg-open";
   /// Where the Cell screen looks for plugged-in devices, and how often.
   std::string dev_dir = "/dev";
   std::vector<std::string> robot_hosts;  ///< UR controllers to list, "host[:port]"

@@ -308,6 +308,45 @@ TEST_F(StudioControllerTest, AKeyboardTakeStartsAfterItsCountdown) {
   EXPECT_TRUE(s.episodes.empty());
 }
 
+// "Open in browser" runs the desktop's opener on the report (here a script that notes what it
+// was given); without a report, or with an opener that is not there, it says so.
+TEST_F(StudioControllerTest, TheReportOpensWithTheDesktopsOpener) {
+  const fs::path opened = dir_ / "opened.txt";
+  const fs::path opener = dir_ / "opener.sh";
+  std::ofstream(opener) << "#!/bin/sh\nprintf '%s' \"$1\" > " << opened.string() << ".tmp && mv "
+                        << opened.string() << ".tmp " << opened.string() << "\n";
+  fs::permissions(opener, fs::perms::owner_all);
+  StudioOptions options = Options();
+  options.open_command = opener.string();
+  {
+    StudioController controller(options);
+    controller.Push(ui::OpenReport{});
+    ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+    EXPECT_THAT(s.errors[0], HasSubstr("write the report first"));
+    controller.Push(ui::DismissErrors{});
+    controller.Push(ui::StartRecording{});
+    WaitFor(controller, [](const auto& now) { return !now.episodes.empty(); });
+    controller.Push(ui::WriteReport{});
+    s = WaitFor(controller, [](const auto& now) { return !now.report_path.empty(); });
+    controller.Push(ui::OpenReport{});
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(opened) && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    std::ifstream in(opened);
+    const std::string given((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(given, (dir_ / "session" / "report" / "report.html").string());
+  }  // the session is free for the next studio
+
+  StudioOptions missing = Options();
+  missing.open_command = (dir_ / "no-such-opener").string();
+  StudioController other(missing);
+  other.Push(ui::OpenReport{});
+  ui::StudioSnapshot s = WaitFor(other, [](const auto& now) { return !now.errors.empty(); });
+  EXPECT_THAT(s.errors[0], HasSubstr("cannot open the report with"));
+  EXPECT_THAT(s.errors[0], HasSubstr("report.html"));
+}
+
 // The Cell screen's list of what is plugged in follows the device folder: a port that appears is
 // listed at the next scan (or at once on Rescan), with no session needed.
 TEST_F(StudioControllerTest, TheCellScreenListsWhatIsPluggedIn) {

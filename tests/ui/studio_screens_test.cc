@@ -518,3 +518,23 @@ TEST(StudioCommandTest, AnUndoBringsTheLastDeletedEpisodeBack) {
 
 }  // namespace
 }  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+TEST(StudioCommandTest, AWrittenReportOpensInTheBrowser) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kDone, teach::Step::kReport);
+  s.report_path.clear();
+  harness.Show(s);
+  EXPECT_FALSE(harness.driver().Drawn("Open in browser"));
+  s.report_path = "sessions/toast/report/report.html";
+  harness.Show(s);
+  harness.driver().Click("Open in browser");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<OpenReport>(commands[0]));
+}
+
+}  // namespace
+}  // namespace recon::ui

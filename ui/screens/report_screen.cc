@@ -15,7 +15,10 @@ void DrawReportScreen(const ScreenContext& context) {
              WhyBlocked(s, teach::Step::kReport))) {
     context.commands.Push(WriteReport{});
   }
-  if (!s.report_path.empty()) StatusText(Status::kOk, "Written: " + s.report_path);
+  if (!s.report_path.empty()) {
+    StatusText(Status::kOk, "Written: " + s.report_path);
+    if (Button("Open in browser")) context.commands.Push(OpenReport{});
+  }
 }
 
 }  // namespace recon::ui

@@ -31,6 +31,8 @@ struct DeleteEpisode {
 };
 /// Brings the last deleted episode back from the session's trash, with its marks.
 struct UndoDelete {};
+/// Opens the written report for the teacher (StudioOptions::open_command, a browser).
+struct OpenReport {};
 struct ReRecordEpisode {
   std::string name;
 };
@@ -108,7 +110,7 @@ using StudioCommand =
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
-                 UndoDelete>;
+                 UndoDelete, OpenReport>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {
