@@ -57,7 +57,7 @@ std::unique_ptr<recon::ui::DesktopWindow> OpenDesktopWindow(const StudioFlags& f
     options.title = flags.options.session_dir.empty()
                         ? std::string("RECON Studio")
                         : "RECON Studio - " + flags.options.session_dir;
-    options.renderer = {flags.width, flags.height, 16.0f};
+    options.renderer = {flags.width, flags.height, 16.0f, flags.ui_scale};
     try {
       auto window = std::make_unique<recon::ui::DesktopWindow>(options);
       std::printf("recon-studio: window on display %s (%s)\n", display.c_str(),
@@ -88,7 +88,10 @@ void Run(StudioFlags flags) {
   recon::studio::StudioController controller(flags.options);
   // Windows before the textures, which live in the window's GL context.
   std::optional<recon::ui::HeadlessWindow> window;
-  if (desktop == nullptr) window.emplace(recon::ui::UiRenderer::Options{flags.width, flags.height});
+  if (desktop == nullptr) {
+    window.emplace(
+        recon::ui::UiRenderer::Options{flags.width, flags.height, 16.0f, flags.ui_scale});
+  }
   std::fflush(stdout);
   recon::ui::StudioTextures textures;
   recon::ui::CommandQueue commands;

@@ -51,6 +51,9 @@ constexpr long long kMaxSeed = 9007199254740992LL;
 constexpr double kMaxDemoNoise_rad_s = worlds::kMaxDemoNoise;
 /// A simulated beacon's noise sigma (metres): the worlds' bound.
 constexpr double kMaxBeaconNoise_m = worlds::kMaxBeaconNoise_m;
+/// The studio's UI scale (--ui-scale): from a small laptop to a 4K screen seen from afar.
+constexpr double kMinUiScale = 0.75;
+constexpr double kMaxUiScale = 3.0;
 /// The studio's countdown before a person's take (seconds): long enough to reach the keys.
 constexpr double kMaxCountdown_s = 10.0;
 /// A Dynamic 2D beacon's noise sigma (world units; the paper's are 2.5 to 6.5).

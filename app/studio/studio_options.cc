@@ -9,6 +9,8 @@ using cli::kMaxCountdown_s;
 using cli::kMaxDemoNoise_rad_s;
 using cli::kMaxSteps;
 using cli::kMaxTests;
+using cli::kMaxUiScale;
+using cli::kMinUiScale;
 using cli::NumberBetween;
 using cli::SeedNumber;
 using cli::WholeBetween;
@@ -75,6 +77,10 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
       ->capture_default_str();
   app.add_option("--height", flags.height, "window height")
       ->check(WholeBetween(480, 8192))
+      ->capture_default_str();
+  app.add_option("--ui-scale", flags.ui_scale,
+                 "draw the font and every size this much larger (2 on a high-DPI screen)")
+      ->check(NumberBetween(kMinUiScale, kMaxUiScale))
       ->capture_default_str();
   return frames;
 }

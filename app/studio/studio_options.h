@@ -21,6 +21,7 @@ struct StudioFlags {
   int frames = 60;
   bool frames_given = false;  ///< --frames on the command line: a window closes after them too
   int width = 1280;
+  float ui_scale = 1.0f;  ///< --ui-scale: the font and every size (2 on a high-DPI screen)
   int height = 800;
 };
 

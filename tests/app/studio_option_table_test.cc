@@ -32,7 +32,8 @@ void PrintTo(const StudioOptionCase& c, std::ostream* os) { *os << c.option; }
 std::vector<StudioOptionCase> NumericOptions() {
   return {{"--seed", true},        {"--noise", false},        {"--demo-noise", false},
           {"--train-steps", true}, {"--rollout-tests", true}, {"--frames", true},
-          {"--width", true},       {"--height", true},        {"--countdown", false}};
+          {"--width", true},       {"--height", true},        {"--countdown", false},
+          {"--ui-scale", false}};
 }
 
 TEST(StudioOptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {

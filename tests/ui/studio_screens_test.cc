@@ -28,8 +28,8 @@ constexpr int kHeight = 800;
 /// A headless studio window drawing whatever snapshot the test sets.
 class StudioHarness {
  public:
-  explicit StudioHarness(int width = kWidth, int height = kHeight)
-      : window_({width, height, 16.0f}),
+  explicit StudioHarness(int width = kWidth, int height = kHeight, float ui_scale = 1.0f)
+      : window_({width, height, 16.0f, ui_scale}),
         driver_(window_, [this] { DrawStudio(snapshot_, commands_, textures_); }) {}
 
   void Show(const StudioSnapshot& snapshot) {
@@ -65,6 +65,17 @@ TEST_P(StudioScreenTest, MatchesItsGolden) {
   StudioHarness harness;
   harness.Show(SnapshotAt(c.progress, c.step));
   EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath(c.name)));
+}
+
+// A high-DPI screen: --ui-scale 2 on a 2560 x 1600 window draws the 1280 x 800 layout twice as
+// large (the font, paddings and every size the screens give through Px).
+TEST(StudioScreenTest, TheRecordScreenAtUiScale2MatchesItsGolden) {
+  StudioHarness harness(2560, 1600, 2.0f);
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("record_2560x1600_scale2")));
+  harness.driver().Click("Start recording");  // the click targets scale with what is drawn
+  ASSERT_EQ(harness.Commands().size(), 1u);
 }
 
 // The smallest window the studio supports, 1024 x 640: the camera views shrink, tables scroll

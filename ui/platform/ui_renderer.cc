@@ -38,8 +38,9 @@ UiRenderer::UiRenderer(const Options& options) : options_(options) {
   config.OversampleV = 1;
   const StudioFontData font = StudioFont();
   io.Fonts->AddFontFromMemoryTTF(const_cast<unsigned char*>(font.data), static_cast<int>(font.size),
-                                 options_.font_size_px, &config);
+                                 options_.font_size_px * options_.ui_scale, &config);
   ApplyStudioStyle(ImGui::GetStyle());
+  ImGui::GetStyle().ScaleAllSizes(options_.ui_scale);
   // GLSL 1.30 runs on Mesa's compatibility profile and on any desktop GL 3.0+ driver.
   if (!ImGui_ImplOpenGL3_Init("#version 130")) {
     ImGui::DestroyContext(context_);

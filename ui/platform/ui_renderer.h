@@ -19,6 +19,9 @@ class UiRenderer {
     int width = 1280;
     int height = 800;
     float font_size_px = 16.0f;
+    /// Everything drawn at this scale (the font, ImGui's paddings and spacings, and the screens'
+    /// own sizes through ui::Px): 2 for a high-DPI screen.
+    float ui_scale = 1.0f;
   };
   explicit UiRenderer(const Options& options);
   ~UiRenderer();

@@ -43,8 +43,8 @@ void DrawBeaconsScreen(const ScreenContext& context) {
   context.textures.camera.Update(s.camera, s.camera_frame);
   // The view takes at most half the room (480 px), the beacons' panel the rest, from 1024 px up.
   const float room = ImGui::GetContentRegionAvail().x;
-  const float camera_width = std::clamp(room * 0.5f, 240.0f, 480.0f);
-  const float panel_width = std::max(200.0f, room - camera_width - 16);
+  const float camera_width = std::clamp(room * 0.5f, Px(240), Px(480));
+  const float panel_width = std::max(Px(200), room - camera_width - Px(16));
   ImGui::BeginGroup();
   const std::optional<std::string> clicked =
       CameraView("camera##beacons", context.textures.camera, camera_width, s.beacons,
@@ -58,7 +58,7 @@ void DrawBeaconsScreen(const ScreenContext& context) {
     ImGui::PushID(b.name.c_str());
     ImGui::Text("Beacon %s (%s)", b.name.c_str(), b.quantity.c_str());
     const std::string preview = b.object.empty() ? "choose an object" : b.object;
-    ImGui::SetNextItemWidth(std::min(220.0f, panel_width - 60));
+    ImGui::SetNextItemWidth(std::min(Px(220), panel_width - Px(60)));
     if (ImGui::BeginCombo("marks##object", preview.c_str())) {
       for (const ObjectView& o : s.objects) {
         if (ImGui::Selectable(o.name.c_str(), o.name == b.object) && !busy) {

@@ -15,7 +15,7 @@ void DrawCalibrateScreen(const ScreenContext& context) {
   const bool blocked = Blocked(s, teach::Step::kCalibrate);
   if (c.running) {
     ImGui::ProgressBar(static_cast<float>(c.points_collected) / std::max(1, c.points_target),
-                       ImVec2(360, 0),
+                       ImVec2(Px(360), 0),
                        Format("%d of %d points", c.points_collected, c.points_target).c_str());
     if (Button("Cancel##calibration")) context.commands.Push(CancelCalibration{});
   } else if (Button(c.present ? "Calibrate again" : "Collect points and fit", !blocked,
@@ -36,7 +36,7 @@ void DrawCalibrateScreen(const ScreenContext& context) {
   for (double r : c.residual_m) cm.push_back(static_cast<float>(100.0 * r));
   ImGui::PlotHistogram("##residuals", cm.data(), static_cast<int>(cm.size()), 0,
                        "residual per point (cm)", 0.0f, static_cast<float>(c.threshold_m * 100.0),
-                       ImVec2(560, 180));
+                       ImVec2(Px(560), Px(180)));
   int outliers = 0;
   for (bool inlier : c.inlier) outliers += !inlier;
   ImGui::Text("%zu points, %d outliers left out of the fit", c.residual_m.size(), outliers);

@@ -94,7 +94,7 @@ void DrawCellScreen(const ScreenContext& context) {
   DrawConnectedDevices(context);
   ImGui::Spacing();
   context.textures.camera.Update(s.camera, s.camera_frame);
-  CameraView("camera##cell", context.textures.camera, 480.0f, s.beacons, {});
+  CameraView("camera##cell", context.textures.camera, Px(480), s.beacons, {});
 }
 
 }  // namespace recon::ui

@@ -19,7 +19,7 @@ void DrawPlayScreen(const ScreenContext& context) {
                               "beacon stay");
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
-  CameraView("camera##play", context.textures.camera, 420.0f, s.beacons, {});
+  CameraView("camera##play", context.textures.camera, Px(420), s.beacons, {});
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();
@@ -30,7 +30,7 @@ void DrawPlayScreen(const ScreenContext& context) {
                Format("Recording play data: %d of %d", s.play_recorded, s.play_target));
     ImGui::ProgressBar(
         s.play_target > 0 ? static_cast<float>(s.play_recorded) / s.play_target : 0.0f,
-        ImVec2(300, 0));
+        ImVec2(Px(300), 0));
     if (Button("Stop")) context.commands.Push(StopPlay{});
   } else if (Button("Record 30 play samples", !blocked, WhyMotionBlocked(s, teach::Step::kPlay))) {
     context.commands.Push(RecordPlay{30});
@@ -42,7 +42,7 @@ void DrawPlayScreen(const ScreenContext& context) {
     ImGui::TextUnformatted("Last sample (the policy's camera):");
     context.textures.play.Update(s.play_image, s.play_image_frame);
     if (context.textures.play.id() != nullptr) {
-      ImGui::Image(context.textures.play.id(), ImVec2(256, 256));
+      ImGui::Image(context.textures.play.id(), ImVec2(Px(256), Px(256)));
     }
     if (!s.play_reading.empty()) {
       std::string reading;

@@ -16,7 +16,7 @@ namespace {
 constexpr float kCameraWidth = 420.0f;
 
 float CameraWidth() {
-  return std::clamp(ImGui::GetContentRegionAvail().x * 0.45f, 240.0f, kCameraWidth);
+  return std::clamp(ImGui::GetContentRegionAvail().x * 0.45f, Px(240), Px(kCameraWidth));
 }
 
 bool KeyDown(ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)); }
@@ -94,7 +94,7 @@ void DrawRecordScreen(const ScreenContext& context) {
   ImGui::BeginGroup();
   if (!s.pending_take.empty()) {
     // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked.
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 520);
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + Px(520));
     StatusText(Status::kWarning, s.pending_take + ".");
     ImGui::PopTextWrapPos();
     if (Button("Keep as not done")) context.commands.Push(StopRecording{});
@@ -110,7 +110,8 @@ void DrawRecordScreen(const ScreenContext& context) {
     const double limit = s.recording_max_samples * s.recording_step_s;
     StatusText(Status::kBusy, Format("Recording: %d samples, %.1f s of %.0f s", s.recording_samples,
                                      elapsed, limit));
-    ImGui::ProgressBar(limit > 0 ? static_cast<float>(elapsed / limit) : 0.0f, ImVec2(520, 0), "");
+    ImGui::ProgressBar(limit > 0 ? static_cast<float>(elapsed / limit) : 0.0f, ImVec2(Px(520), 0),
+                       "");
     if (s.teleop != TeleopMode::kScripted && limit > 0 && limit - elapsed <= 5.0) {
       StatusText(Status::kWarning,
                  Format("%.0f s left: the take ends at %.0f s (then keep or discard it)",
@@ -135,13 +136,13 @@ void DrawRecordScreen(const ScreenContext& context) {
   if (ImGui::BeginTable("episodes", 5,
                         ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                             ImGuiTableFlags_ScrollX,
-                        ImVec2(0, 320))) {
-    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, 120);
-    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, 64);
-    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, 60);
-    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, 40);
+                        ImVec2(0, Px(320)))) {
+    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, Px(120));
+    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, Px(64));
+    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(60));
+    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(40));
     // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, 240);
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(240));
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());

@@ -35,7 +35,7 @@ void DrawPlayback(const ScreenContext& context) {
   if (Button("Scene >", idle && scenario + 1 < first.tests)) {
     context.commands.Push(ShowRolloutFrame{scenario + 1, 0});
   }
-  ImGui::SameLine(0, 24);
+  ImGui::SameLine(0, Px(24));
   if (Button("|<", idle)) context.commands.Push(ShowRolloutFrame{scenario, 0});
   ImGui::SameLine();
   if (Button("<##step-back", idle && frame > 0)) {
@@ -53,11 +53,11 @@ void DrawPlayback(const ScreenContext& context) {
   }
   ImGui::SameLine();
   if (Button(">|", idle)) context.commands.Push(ShowRolloutFrame{scenario, frames - 1});
-  ImGui::SameLine(0, 24);
+  ImGui::SameLine(0, Px(24));
   int slider = frame;
   const float step_text = ImGui::CalcTextSize("step 0000, 000.0 s").x;
   ImGui::SetNextItemWidth(
-      std::clamp(ImGui::GetContentRegionAvail().x - step_text - 16, 100.0f, 300.0f));
+      std::clamp(ImGui::GetContentRegionAvail().x - step_text - Px(16), Px(100), Px(300)));
   // The step is written beside the slider, never under its handle.
   if (ImGui::SliderInt("##frame", &slider, 0, std::max(0, frames - 1), "") && idle) {
     context.commands.Push(ShowRolloutFrame{scenario, slider});
@@ -70,11 +70,11 @@ void DrawPlayback(const ScreenContext& context) {
   // high as the space under the controls allows (the frames are 4:3), with a line for the outcome.
   const ImVec2 room = ImGui::GetContentRegionAvail();
   const float line = ImGui::GetTextLineHeightWithSpacing();
-  const float width =
-      std::max(80.0f, std::min({480.0f, (room.x - 16) / 2, (room.y - 2.5f * line) * 4.0f / 3.0f}));
+  const float width = std::max(
+      Px(80), std::min({Px(480), (room.x - Px(16)) / 2, (room.y - 2.5f * line) * 4.0f / 3.0f}));
   for (size_t i = 0; i < shown.size() && i < 2; ++i) {
     const RolloutView& r = *shown[i];
-    if (i > 0) ImGui::SameLine(0, 16);
+    if (i > 0) ImGui::SameLine(0, Px(16));
     ImGui::BeginGroup();
     textures[i]->Update(r.frame_image, r.frame_id);
     if (textures[i]->id() != nullptr && textures[i]->width() > 0) {

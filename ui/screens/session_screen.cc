@@ -45,7 +45,7 @@ void DrawSessionPicker(const ScreenContext& context) {
   ScreenHeader("Session", "Open a teaching session, or create one in a new folder.");
   std::array<char, 1024>& folder = context.textures.session_folder;
   ImGui::TextUnformatted("Folder (a new folder creates a tabletop session):");
-  const bool entered = InputText("##session-folder", folder.data(), folder.size(), 560.0f);
+  const bool entered = InputText("##session-folder", folder.data(), folder.size(), Px(560));
   ImGui::SameLine();
   if (Button("Open or create", folder[0] != '\0', "type the session's folder first") ||
       (entered && folder[0] != '\0')) {

@@ -73,12 +73,13 @@ void DrawSidebar(const ScreenContext& context) {
     }
     const float right = row.x + ImGui::GetContentRegionAvail().x;
     if (step == s.next_step && !selected) {
-      ImGui::SetCursorScreenPos(ImVec2(right - 64, row.y));
+      ImGui::SetCursorScreenPos(ImVec2(right - Px(64), row.y));
       ImGui::TextColored(ImVec4(0.0f, 0.447f, 0.698f, 1.0f), "next");
     }
-    ImGui::SetCursorScreenPos(ImVec2(right - 18, row.y));
+    ImGui::SetCursorScreenPos(ImVec2(right - Px(18), row.y));
     StatusText(StateStatus(status.state), "");
-    ImGui::SetCursorScreenPos(ImVec2(row.x + 12, row.y + ImGui::GetTextLineHeightWithSpacing()));
+    ImGui::SetCursorScreenPos(
+        ImVec2(row.x + Px(12), row.y + ImGui::GetTextLineHeightWithSpacing()));
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + ImGui::GetContentRegionAvail().x - 4);
     ImGui::TextWrapped("%s", status.state == teach::StepState::kBlocked ? status.why_blocked.c_str()

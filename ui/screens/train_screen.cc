@@ -27,11 +27,11 @@ void DrawRun(const TrainingView& run, float width, const PlotRange& action,
                : Format("%d / %d steps, %.0f s", run.step, run.steps, run.seconds).c_str());
   if (!run.action_loss.empty()) {
     LossPlot("action", Format("Action loss (%s): %.3g", LossUnit(run), run.action_loss.back()),
-             run.loss_step, run.action_loss, action, width, 150);
+             run.loss_step, run.action_loss, action, width, Px(150));
   }
   if (!run.beacon_loss.empty()) {
     LossPlot("beacon", Format("Beacon loss (%s): %.3g", LossUnit(run), run.beacon_loss.back()),
-             run.loss_step, run.beacon_loss, beacon, width, 110);
+             run.loss_step, run.beacon_loss, beacon, width, Px(110));
   }
   if (!run.error.empty()) StatusText(Status::kError, run.error);
   if (!run.out_of_date.empty()) {
@@ -59,7 +59,7 @@ void DrawTrainScreen(const ScreenContext& context) {
   }
   ImGui::Spacing();
   // Side by side, as the paper compares them.
-  const float width = (ImGui::GetContentRegionAvail().x - 20) / 2;
+  const float width = (ImGui::GetContentRegionAvail().x - Px(20)) / 2;
   // Every column starts at the same height (SameLine would align the second with the first's
   // last framed widget, a few pixels lower).
   const float top = ImGui::GetCursorPosY();

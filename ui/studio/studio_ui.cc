@@ -52,8 +52,8 @@ void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
     ImGui::TextUnformatted(snapshot.status.empty() ? "Ready." : snapshot.status.c_str());
   }
   constexpr float kButtonWidth = 150.0f;
-  ImGui::SameLine(ImGui::GetWindowWidth() - kButtonWidth - 10);
-  ImGui::SetCursorPosY(2);
+  ImGui::SameLine(ImGui::GetWindowWidth() - Px(kButtonWidth) - Px(10));
+  ImGui::SetCursorPosY(Px(2));
   ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.8f, 0.05f, 0.05f, 1.0f));
   ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.15f, 0.1f, 1.0f));
   ImGui::PushStyleColor(ImGuiCol_ButtonActive, ImVec4(0.6f, 0.0f, 0.0f, 1.0f));
@@ -89,18 +89,18 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
     top = ImGui::GetWindowSize().y;
     ImGui::EndMainMenuBar();
   }
-  const float body = display.y - kStatusHeight - top;
+  const float body = display.y - Px(kStatusHeight) - top;
 
   ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(kSidebarWidth, body));
+  ImGui::SetNextWindowSize(ImVec2(Px(kSidebarWidth), body));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.93f, 0.94f, 0.955f, 1.0f));
   ImGui::Begin("Steps", nullptr, kPanel);
   DrawSidebar(context);
   ImGui::End();
   ImGui::PopStyleColor();
 
-  ImGui::SetNextWindowPos(ImVec2(kSidebarWidth, top));
-  ImGui::SetNextWindowSize(ImVec2(display.x - kSidebarWidth, body));
+  ImGui::SetNextWindowPos(ImVec2(Px(kSidebarWidth), top));
+  ImGui::SetNextWindowSize(ImVec2(display.x - Px(kSidebarWidth), body));
   ImGui::Begin("Screen", nullptr, kPanel);
   if (!snapshot.errors.empty()) {
     for (const std::string& error : snapshot.errors) StatusText(Status::kError, error);
@@ -111,8 +111,8 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::End();
 
   ImGui::SetNextWindowPos(ImVec2(0, top + body));
-  ImGui::SetNextWindowSize(ImVec2(display.x, kStatusHeight));
-  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(10, 5));
+  ImGui::SetNextWindowSize(ImVec2(display.x, Px(kStatusHeight)));
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(Px(10), Px(5)));
   ImGui::Begin("Status", nullptr, kPanel);
   DrawStatusBar(snapshot, commands);
   ImGui::End();

@@ -29,6 +29,8 @@ ImU32 StatusColour(Status status) {
 
 }  // namespace
 
+float Px(float px) { return px * ImGui::GetFontSize() / 16.0f; }
+
 bool Button(const char* label, bool enabled, const std::string& why_disabled) {
   if (!enabled) ImGui::BeginDisabled();
   const bool clicked = ImGui::Button(label);

@@ -24,6 +24,9 @@ bool InputText(const char* label, char* buffer, size_t size, float width);
 /// A small coloured status dot followed by text (green ok, amber warning, red error, grey off).
 enum class Status { kOk, kWarning, kError, kOff, kBusy };
 void StatusText(Status status, const std::string& text);
+/// A size in the studio's 1x pixels (laid out for a 16 px font) at the UI's scale: the screens
+/// give every fixed size through it, so --ui-scale 2 doubles them with the font.
+float Px(float px);
 /// printf-style formatting into a std::string, for labels built from numbers.
 std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
 /// A heading with the step's purpose under it.
