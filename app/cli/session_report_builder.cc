@@ -200,7 +200,7 @@ report::SessionReport BuildSessionReport(const store::Session& session,
 
 std::string WriteReportForSession(const store::Session& session, const std::string& out_dir,
                                   const std::string& episode) {
-  const std::string out = out_dir.empty() ? (fs::path(session.dir()) / "report").string() : out_dir;
+  const std::string out = out_dir.empty() ? session.ReportFolder() : out_dir;
   const std::vector<std::string> written =
       report::WriteSessionReport(BuildSessionReport(session, episode), out);
   return written.back();

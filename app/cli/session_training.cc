@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -274,25 +273,18 @@ std::vector<store::RolloutSummary> EvaluateSessionMethods(
     const std::function<void(size_t method, int done, int steps)>& on_step,
     const std::atomic<bool>* cancel) {
   std::vector<store::RolloutSummary> summaries(methods.size());
-  std::vector<std::exception_ptr> errors(methods.size());
   std::mutex done_mutex;
-  ParallelFor(methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
-    try {
-      experiments::EvaluationHooks hooks;
-      hooks.cancel = cancel;
-      if (on_step) hooks.on_step = [&, i](int done, int steps) { on_step(i, done, steps); };
-      summaries[i] = EvaluateSessionMethod(session, methods[i], tests, seed, true, hooks);
-      if (on_done) {
-        std::lock_guard<std::mutex> lock(done_mutex);
-        on_done(summaries[i]);
-      }
-    } catch (...) {
-      errors[i] = std::current_exception();
-    }
-  });
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  RethrowFirst(ParallelForEachCatching(
+      methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
+        experiments::EvaluationHooks hooks;
+        hooks.cancel = cancel;
+        if (on_step) hooks.on_step = [&, i](int done, int steps) { on_step(i, done, steps); };
+        summaries[i] = EvaluateSessionMethod(session, methods[i], tests, seed, true, hooks);
+        if (on_done) {
+          std::lock_guard<std::mutex> lock(done_mutex);
+          on_done(summaries[i]);
+        }
+      }));
   return summaries;
 }
 

@@ -104,15 +104,10 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
     progress.Advance(advance, detail);
   };
   std::vector<store::TrainingRecord> records(flags.methods.size());
-  std::vector<std::exception_ptr> errors(flags.methods.size());
-  ParallelFor(
+  const std::vector<std::exception_ptr> errors = ParallelForEachCatching(
       flags.methods.size(), std::max(1u, std::thread::hardware_concurrency()), [&](size_t i) {
-        try {
-          records[i] = TrainSessionMethod(session, flags.methods[i], options,
-                                          [&, i](const TrainingProgress& p) { report(i, p); });
-        } catch (...) {
-          errors[i] = std::current_exception();
-        }
+        records[i] = TrainSessionMethod(session, flags.methods[i], options,
+                                        [&, i](const TrainingProgress& p) { report(i, p); });
       });
   progress.Finish();
   // A method that finished keeps its checkpoint and says so; then the first failure is reported.
@@ -130,9 +125,7 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
         flags.session.c_str(), record.checkpoint.c_str());
   }
   std::fflush(stdout);
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  RethrowFirst(errors);
 }
 
 struct EvalFlags {

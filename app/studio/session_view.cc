@@ -18,7 +18,8 @@ namespace fs = std::filesystem;
 namespace {
 
 teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInputs& inputs,
-                           const std::optional<calib::CalibrationReport>& calibration) {
+                           const std::optional<calib::CalibrationReport>& calibration,
+                           const cli::SessionResults& results, bool report_written) {
   const store::SessionManifest& m = session.manifest();
   teach::WorkflowFacts f;
   f.session_open = true;
@@ -44,13 +45,12 @@ teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInput
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
     if (fs::exists(session.CheckpointPath(method))) f.trained_methods.push_back(method);
     // Rollouts of a model retrained since (or trained on other data) are not this model's.
-    const std::optional<store::RolloutSummary> r = store::ReadRolloutSummary(session, method);
-    if (!r) continue;
-    const bool current =
-        cli::RolloutStaleness(session, *r, store::ReadTrainingRecord(session, method)).empty();
-    (current ? f.evaluated_methods : f.outdated_evaluations).push_back(method);
+    const auto rollouts = results.rollouts.find(method);
+    if (rollouts == results.rollouts.end()) continue;
+    (rollouts->second.out_of_date.empty() ? f.evaluated_methods : f.outdated_evaluations)
+        .push_back(method);
   }
-  f.report_written = fs::exists(fs::path(session.dir()) / "report" / "report.html");
+  f.report_written = report_written;
   return f;
 }
 
@@ -68,7 +68,8 @@ ui::CalibrationView CalibrationView(const std::optional<calib::CalibrationReport
 }
 
 /// A model saved in the session as the Train screen shows it: finished, with its loss curves.
-ui::TrainingView SavedTrainingView(const store::Session& session, const store::TrainingRecord& t) {
+ui::TrainingView SavedTrainingView(const cli::CheckedResult<store::TrainingRecord>& saved) {
+  const store::TrainingRecord& t = saved.record;
   ui::TrainingView view;
   view.method = t.method;
   view.label = t.label;
@@ -85,7 +86,7 @@ ui::TrainingView SavedTrainingView(const store::Session& session, const store::T
     }
     if (i < h.total_loss.size()) view.total_loss.push_back(static_cast<float>(h.total_loss[i]));
   }
-  view.out_of_date = cli::TrainingStaleness(session, t);
+  view.out_of_date = saved.out_of_date;
   return view;
 }
 
@@ -124,7 +125,11 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   if (!m.calibration_file.empty()) {
     calibration = calib::LoadCalibration((fs::path(session.dir()) / m.calibration_file).string());
   }
-  ShowWorkflow(Facts(session, inputs, calibration), s);
+  // Every training record and rollout summary is read, and checked against its checkpoint, once.
+  const cli::SessionResults results = cli::ReadSessionResults(session);
+  const std::string report = session.ReportPath();
+  const bool report_written = fs::exists(report);
+  ShowWorkflow(Facts(session, inputs, calibration, results, report_written), s);
   s.calibration = CalibrationView(calibration);
   s.calibration.points_target = inputs.calibration_points;
   for (const store::EpisodeEntry& e : session.demos()) {
@@ -133,23 +138,23 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   }
   s.play_samples = static_cast<int>(session.PlaySamples());
   // A report written before (by the studio or `recon report`) can be opened too.
-  if (const fs::path report = fs::path(session.dir()) / "report" / "report.html";
-      fs::exists(report)) {
-    s.report_path = report.string();
-  }
+  if (report_written) s.report_path = report;
   const nlohmann::json ledger = cli::TeachingLedgerJson(session);
   s.teacher_seconds = ledger["recon_play_total_s"].get<double>();
   s.teacher_demo_seconds = ledger["demonstrations_s"].get<double>();
   s.teacher_play_seconds = ledger["play_s"].get<double>();
   s.teacher_placement_seconds = ledger["beacon_placements_s"].get<double>();
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    if (!fs::exists(session.CheckpointPath(method))) continue;
-    const std::optional<store::TrainingRecord> t = store::ReadTrainingRecord(session, method);
-    if (t) s.training.push_back(SavedTrainingView(session, *t));
+    const auto trained = results.training.find(method);
+    if (trained == results.training.end() || !fs::exists(session.CheckpointPath(method))) {
+      continue;
+    }
+    s.training.push_back(SavedTrainingView(trained->second));
   }
   for (const char* method : {teach::kBaselineMethod, teach::kReconMethod}) {
-    const std::optional<store::RolloutSummary> r = store::ReadRolloutSummary(session, method);
-    if (!r) continue;
+    const auto rollouts = results.rollouts.find(method);
+    if (rollouts == results.rollouts.end()) continue;
+    const store::RolloutSummary* r = &rollouts->second.record;
     ui::RolloutView view;
     view.method = method;
     view.label = r->label;
@@ -162,8 +167,7 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     for (const store::ScenarioResult& scene : r->per_scenario) {
       view.scene_failures.push_back(worlds::DescribeFailure(scene.details, scene.succeeded));
     }
-    view.out_of_date =
-        cli::RolloutStaleness(session, *r, store::ReadTrainingRecord(session, method));
+    view.out_of_date = rollouts->second.out_of_date;
     s.rollouts.push_back(view);
   }
   return s;

@@ -198,16 +198,13 @@ void StudioCell::Apply(const ui::WriteReport&) {
 }
 
 void StudioCell::Apply(const ui::OpenReport&) {
-  const fs::path report = fs::path(session_->dir()) / "report" / "report.html";
-  if (!fs::exists(report)) {
-    throw UserError("write the report first: " + report.string() + " does not exist");
-  }
+  const std::string path = session_->ReportPath();
+  if (!fs::exists(path)) throw UserError("write the report first: " + path + " does not exist");
   if (options_.open_command.empty()) {
-    throw UserError("no program to open the report with; it is at " + report.string());
+    throw UserError("no program to open the report with; it is at " + path);
   }
   // Started, not waited for: an opener may run until the browser closes. A thread reaps it.
   const std::string program = options_.open_command;
-  const std::string path = report.string();
   char* argv[] = {const_cast<char*>(program.c_str()), const_cast<char*>(path.c_str()), nullptr};
   pid_t pid = 0;
   if (const int error = posix_spawnp(&pid, program.c_str(), nullptr, nullptr, argv, environ);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <exception>
 #include <filesystem>
 #include <thread>
 
@@ -42,7 +41,6 @@ std::string TrainMethods(JobThread& jobs, const store::Session& session,
   });
   // Each trainer runs on one core (learner.h), so the methods train side by side, one thread
   // each: on 2 cores Train-to-Rollouts takes the slowest method's time, not the sum.
-  std::vector<std::exception_ptr> errors(methods.size());
   std::vector<int> cancelled_at(methods.size(), -1);
   const auto train_one = [&](size_t i) {
     try {
@@ -74,15 +72,13 @@ std::string TrainMethods(JobThread& jobs, const store::Session& session,
       cancelled_at[i] = e.step();
       jobs.Update([&](JobState& state) { state.training[i].running = false; });
     } catch (...) {
-      errors[i] = std::current_exception();
       jobs.Update([&](JobState& state) { state.training[i].running = false; });
+      throw;
     }
   };
-  ParallelFor(methods.size(), std::max(1u, std::thread::hardware_concurrency()), train_one);
   // What one method's failure says is reported; a method that finished keeps its checkpoint.
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  RethrowFirst(ParallelForEachCatching(
+      methods.size(), std::max(1u, std::thread::hardware_concurrency()), train_one));
   // A cancel is what the teacher asked for, not an error: say what was kept.
   std::string saved, stopped;
   const std::vector<ui::TrainingView> views = jobs.Peek().training;

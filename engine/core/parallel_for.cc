@@ -36,4 +36,23 @@ void ParallelFor(size_t count, unsigned threads, const std::function<void(size_t
   if (error) std::rethrow_exception(error);
 }
 
+std::vector<std::exception_ptr> ParallelForEachCatching(size_t count, unsigned threads,
+                                                        const std::function<void(size_t)>& job) {
+  std::vector<std::exception_ptr> errors(count);
+  ParallelFor(count, threads, [&](size_t i) {
+    try {
+      job(i);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  return errors;
+}
+
+void RethrowFirst(const std::vector<std::exception_ptr>& errors) {
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+}
+
 }  // namespace recon

@@ -143,6 +143,10 @@ class Session {
   static constexpr char kCheckpointFolder[] = "checkpoints";
   static constexpr char kTrainingFolder[] = "training";
   static constexpr char kRolloutFolder[] = "rollouts";
+  /// Where the session's own report goes (`recon report`, the studio) and its page in there:
+  /// report/report.html.
+  std::string ReportFolder() const;
+  std::string ReportPath() const;
 
   /// Rebuilds session.hdf5 (atomically).
   void RebuildIndex() const;

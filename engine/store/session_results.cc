@@ -1,5 +1,5 @@
 // Where a session keeps what was made from its episodes, one file of each kind per method: the
-// model, its training record, its rollouts' summary and their replay.
+// model, its training record, its rollouts' summary and their replay; and its report.
 
 #include <filesystem>
 
@@ -37,6 +37,12 @@ std::string Session::RolloutSummaryPath(const std::string& method) const {
 
 std::string Session::RolloutReplayPath(const std::string& method) const {
   return Path(RolloutReplayRelativePath(method));
+}
+
+std::string Session::ReportFolder() const { return Path("report"); }
+
+std::string Session::ReportPath() const {
+  return (std::filesystem::path(ReportFolder()) / "report.html").string();
 }
 
 }  // namespace recon::store
