@@ -9,6 +9,7 @@
 #include <optional>
 #include <variant>
 
+#include "app/cli/option_checks.h"
 #include "app/cli/run_main.h"
 #include "app/studio/studio_controller.h"
 #include "app/studio/studio_options.h"
@@ -58,10 +59,13 @@ std::unique_ptr<recon::ui::DesktopWindow> OpenDesktopWindow(const StudioFlags& f
                         ? std::string("RECON Studio")
                         : "RECON Studio - " + flags.options.session_dir;
     options.renderer = {flags.width, flags.height, 16.0f, flags.ui_scale};
+    options.ui_scale_from_screen = !(flags.ui_scale > 0);
+    options.min_ui_scale = static_cast<float>(recon::cli::kMinUiScale);
+    options.max_ui_scale = static_cast<float>(recon::cli::kMaxUiScale);
     try {
       auto window = std::make_unique<recon::ui::DesktopWindow>(options);
-      std::printf("recon-studio: window on display %s (%s)\n", display.c_str(),
-                  window->description().c_str());
+      std::printf("recon-studio: window on display %s (%s), UI scale %.2g\n", display.c_str(),
+                  window->description().c_str(), window->ui_scale());
       return window;
     } catch (const recon::UserError& e) {
       why_not = e.what();
@@ -89,8 +93,8 @@ void Run(StudioFlags flags) {
   // Windows before the textures, which live in the window's GL context.
   std::optional<recon::ui::HeadlessWindow> window;
   if (desktop == nullptr) {
-    window.emplace(
-        recon::ui::UiRenderer::Options{flags.width, flags.height, 16.0f, flags.ui_scale});
+    window.emplace(recon::ui::UiRenderer::Options{flags.width, flags.height, 16.0f,
+                                                  flags.ui_scale > 0 ? flags.ui_scale : 1.0f});
   }
   std::fflush(stdout);
   recon::ui::StudioTextures textures;
@@ -123,6 +127,7 @@ void Run(StudioFlags flags) {
     driver.SetIdleCheck([&] { return controller.Idle(); });
     driver.SetSettledCheck([&] { return controller.Settled(); });
     driver.SetQuitCheck([&] { return quit; });
+    driver.SetSnapshotSource([&] { return controller.Snapshot(); });
     if (!flags.screenshots.empty()) {
       fs::create_directories(flags.screenshots);
       driver.SetScreenshotDir(flags.screenshots);

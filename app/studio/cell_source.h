@@ -10,6 +10,7 @@
 #include "engine/teach/cartesian_teleop.h"
 #include "engine/teach/recorder.h"
 #include "engine/teach/session_setup.h"
+#include "engine/worlds/orbit_camera.h"
 #include "engine/worlds/world.h"
 #include "ui/studio/studio_snapshot.h"
 
@@ -49,10 +50,12 @@ class CellSource {
   /// A person's teacher: `*command`'s grip velocity as the arm's joint velocities.
   virtual teach::Teacher PersonTeacher(worlds::World& world,
                                        const teach::TeleopCommand* command) = 0;
-  /// The grip point's table velocity for a teleop input given on the live view, `speed_m_s` at
-  /// full deflection: the arrows move the arm the way the teacher sees it move on screen.
+  /// The grip point's table velocity for a teleop input, `speed_m_s` at full deflection: the
+  /// arrows move the arm the way the teacher sees it move on screen, in the teacher's 3-D view
+  /// (`teacher_view`) where the cell has one, else in the live camera view (`view`).
   virtual Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input,
-                                         ViewSize view, double speed_m_s) const = 0;
+                                         ViewSize view, const worlds::OrbitCamera& teacher_view,
+                                         double speed_m_s) const = 0;
   /// How play samples record who moved the objects ("simulated-play", "person-play").
   virtual std::string PlaySource() const = 0;
 
@@ -69,7 +72,11 @@ class CellSource {
   virtual bool ShowLive(worlds::World& world, const store::Session& session,
                         const std::vector<float>& reading, bool wanted, ViewSize view,
                         ui::StudioSnapshot& s) = 0;
-  /// The grip point and the gripper, for the readout.
+  /// The teacher's 3-D view from `camera` at `view` pixels (ui::TeacherView); false, drawing
+  /// nothing, where the cell has none (a real cell).
+  virtual bool ShowTeacherView(worlds::World& world, const worlds::OrbitCamera& camera,
+                               ViewSize view, ui::StudioSnapshot& s) = 0;
+  /// The grip point, the gripper and what it holds, for the readout.
   virtual void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const = 0;
   /// The cell's device rows (a real cell's live status); the simulated cell's come from the
   /// session's manifest.

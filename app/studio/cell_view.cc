@@ -48,9 +48,82 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
   }
 }
 
+worlds::OrbitCamera DefaultTeacherView() {
+  worlds::OrbitCamera view;
+  view.lookat = Eigen::Vector3d(0.45, 0.0, 0.05);
+  view.azimuth_deg = 90.0;
+  view.elevation_deg = -35.0;
+  view.distance_m = 1.3;
+  return view;
+}
+
+void ShowTeacherView(worlds::Tabletop& world, worlds::SceneRenderer& renderer,
+                     const worlds::OrbitCamera& camera, int width, int height,
+                     ui::StudioSnapshot& s) {
+  // The drop line from the grip point down to what is under it and a spot where it lands (on
+  // the toast when the gripper is over it): with the gripper's shadow, what tells a person how
+  // high it is and over what.
+  const Eigen::Vector3d grip = world.arm().GripPosition();
+  const Eigen::Vector3d foot = world.SurfaceBelowGrip() + Eigen::Vector3d(0, 0, 0.0006);
+  constexpr std::array<float, 4> kMarker = {1.0f, 0.85f, 0.1f, 0.9f};
+  std::vector<worlds::SceneMarker> markers;
+  if (grip.z() > foot.z() + 0.002) {
+    markers.push_back({worlds::SceneMarker::Shape::kLine, grip, foot, 0.0015, kMarker});
+  }
+  markers.push_back({worlds::SceneMarker::Shape::kDisc, foot, foot, 0.012, kMarker});
+  ui::TeacherView& view = s.teacher_view;
+  view.available = true;
+  view.image = renderer.RenderOrbit(world.scene(), camera, markers, width, height);
+  const worlds::OrbitCamera shown = camera.Clamped();
+  view.azimuth_deg = static_cast<float>(shown.azimuth_deg);
+  view.elevation_deg = static_cast<float>(shown.elevation_deg);
+  view.distance_m = static_cast<float>(shown.distance_m);
+  const tags::PinholeCamera pinhole = cell::OrbitSceneCamera(world.scene(), shown, width, height);
+  const auto pixel = [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector2d px = pinhole.Project(p);
+    return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
+  };
+  view.grip_pixel = pixel(grip);
+  view.spot_pixel = pixel(foot);
+}
+
+ui::GripView GripViewOf(const worlds::Tabletop& world) {
+  ui::GripView grip;
+  grip.object = "toast";
+  switch (world.GripOnToast()) {
+    case worlds::ToastGrip::kOpen:
+      grip.state = ui::GripState::kOpen;
+      break;
+    case worlds::ToastGrip::kClosing:
+      grip.state = ui::GripState::kClosing;
+      break;
+    case worlds::ToastGrip::kHolding:
+      grip.state = ui::GripState::kHolding;
+      break;
+    case worlds::ToastGrip::kClosedOnNothing:
+      grip.state = ui::GripState::kClosedOnNothing;
+      break;
+  }
+  const auto [low, high] = world.GraspHeights();
+  grip.grasp_min_m = static_cast<float>(low);
+  grip.grasp_max_m = static_cast<float>(high);
+  return grip;
+}
+
 }  // namespace recon::studio
 
 namespace recon::studio {
+
+Eigen::Vector3d TeleopVelocity(const worlds::OrbitCamera& camera, const ui::TeleopInput& input,
+                               double speed_m_s) {
+  const Eigen::Vector2d wanted =
+      camera.TableRight() * input.screen_right + camera.TableAway() * input.screen_up;
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  const double deflection = std::min(1.0, wanted.norm());
+  if (deflection > 0) velocity.head<2>() = wanted.normalized() * deflection * speed_m_s;
+  velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
+  return velocity;
+}
 
 Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::Vector3d& grip,
                                const ui::TeleopInput& input, double speed_m_s) {
@@ -67,12 +140,6 @@ Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::V
   }
   velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
   return velocity;
-}
-
-Eigen::Vector3d TeleopVelocity(worlds::Tabletop& world, const ui::TeleopInput& input, int width,
-                               int height, double speed_m_s) {
-  return TeleopVelocity(cell::SceneCamera(world.scene(), "top", width, height),
-                        world.arm().GripPosition(), input, speed_m_s);
 }
 
 }  // namespace recon::studio

@@ -91,6 +91,8 @@ void RealCellSource::ShowArm(const worlds::World&, ui::StudioSnapshot& s) const 
   s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
               static_cast<float>(grip.z())};
   s.gripper_closed = cell_->arm()->State().gripper_opening < 0.5;
+  // A real gripper here reports its opening only: closed, it may or may not hold the toast.
+  s.grip.state = s.gripper_closed ? ui::GripState::kUnknown : ui::GripState::kOpen;
 }
 
 void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {
@@ -120,7 +122,8 @@ void RealCellSource::ShowSafety(const worlds::World*, ui::SafetyView& view) cons
 }
 
 Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
-                                               ViewSize, double speed_m_s) const {
+                                               ViewSize, const worlds::OrbitCamera&,
+                                               double speed_m_s) const {
   if (cell_->camera_pose() && cell_->arm() != nullptr) {
     return studio::TeleopVelocity(cell_->camera_pose()->camera, GripPoint(), input, speed_m_s);
   }

@@ -37,6 +37,7 @@ class RealCellSource final : public CellSource {
   /// Through the located camera, or along the table's axes (right +x, up +y) when the camera
   /// has no pose.
   Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
+                                 const worlds::OrbitCamera& teacher_view,
                                  double speed_m_s) const override;
   std::string PlaySource() const override { return "person-play"; }
 
@@ -48,6 +49,11 @@ class RealCellSource final : public CellSource {
   bool ShowLive(worlds::World& world, const store::Session& session,
                 const std::vector<float>& reading, bool wanted, ViewSize view,
                 ui::StudioSnapshot& s) override;
+  /// No 3-D view of a real cell yet (it needs a model of where the objects are).
+  bool ShowTeacherView(worlds::World&, const worlds::OrbitCamera&, ViewSize,
+                       ui::StudioSnapshot&) override {
+    return false;
+  }
   void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const override;
   /// Replaces the snapshot's camera, beacon and arm rows by the devices' live status.
   void ShowDevices(ui::StudioSnapshot& s) const override;

@@ -9,6 +9,7 @@
 #include "engine/calib/calibration.h"
 #include "engine/store/rollout_summary.h"
 #include "engine/store/training_record.h"
+#include "engine/teach/teacher_mix.h"
 #include "engine/worlds/outcome_words.h"
 
 namespace recon::studio {
@@ -132,10 +133,13 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   ShowWorkflow(Facts(session, inputs, calibration, results, report_written), s);
   s.calibration = CalibrationView(calibration);
   s.calibration.points_target = inputs.calibration_points;
+  std::vector<std::string> sources;  // of the demonstrations training will use
   for (const store::EpisodeEntry& e : session.demos()) {
     s.episodes.push_back({e.name, static_cast<int>(e.meta.num_samples), e.meta.teaching_seconds,
                           e.meta.succeeded, e.flags.bad, e.flags.split, e.problem});
+    if (!e.flags.bad && e.problem.empty()) sources.push_back(e.meta.source);
   }
+  s.teacher_mix_warning = teach::TeacherMixWarning(sources);
   s.play_samples = static_cast<int>(session.PlaySamples());
   // A report written before (by the studio or `recon report`) can be opened too.
   if (report_written) s.report_path = report;

@@ -49,10 +49,11 @@ teach::Teacher SimulatedCellSource::PersonTeacher(worlds::World& world,
   return teach::CartesianTeleopTeacher(TabletopOf(world), command);
 }
 
-Eigen::Vector3d SimulatedCellSource::TeleopVelocity(worlds::World& world,
-                                                    const ui::TeleopInput& input, ViewSize view,
+Eigen::Vector3d SimulatedCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
+                                                    ViewSize,
+                                                    const worlds::OrbitCamera& teacher_view,
                                                     double speed_m_s) const {
-  return studio::TeleopVelocity(TabletopOf(world), input, view.width, view.height, speed_m_s);
+  return studio::TeleopVelocity(teacher_view, input, speed_m_s);
 }
 
 std::optional<std::vector<float>> SimulatedCellSource::IdleBeaconReading(worlds::World& world,
@@ -70,8 +71,16 @@ bool SimulatedCellSource::ShowLive(worlds::World& world, const store::Session& s
   return true;
 }
 
+bool SimulatedCellSource::ShowTeacherView(worlds::World& world, const worlds::OrbitCamera& camera,
+                                          ViewSize view, ui::StudioSnapshot& s) {
+  studio::ShowTeacherView(TabletopOf(world), renderer_, camera, view.width, view.height, s);
+  s.teacher_view.frame = ++teacher_frames_;
+  return true;
+}
+
 void SimulatedCellSource::ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const {
   const worlds::Tabletop& tabletop = TabletopOf(world);
+  s.grip = GripViewOf(tabletop);
   const Eigen::Vector3d grip = tabletop.arm().GripPosition();
   s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
               static_cast<float>(grip.z())};

@@ -30,6 +30,7 @@ class SimulatedCellSource final : public CellSource {
   bool HasScriptedTeacher() const override { return true; }
   teach::Teacher PersonTeacher(worlds::World& world, const teach::TeleopCommand* command) override;
   Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
+                                 const worlds::OrbitCamera& teacher_view,
                                  double speed_m_s) const override;
   std::string PlaySource() const override { return "simulated-play"; }
 
@@ -38,6 +39,8 @@ class SimulatedCellSource final : public CellSource {
   bool ShowLive(worlds::World& world, const store::Session& session,
                 const std::vector<float>& reading, bool wanted, ViewSize view,
                 ui::StudioSnapshot& s) override;
+  bool ShowTeacherView(worlds::World& world, const worlds::OrbitCamera& camera, ViewSize view,
+                       ui::StudioSnapshot& s) override;
   void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const override;
   void ShowDevices(ui::StudioSnapshot&) const override {}
   void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
@@ -48,7 +51,8 @@ class SimulatedCellSource final : public CellSource {
 
  private:
   worlds::SceneRenderer& renderer_;
-  uint64_t frames_ = 0;  ///< frames rendered so far
+  uint64_t frames_ = 0;          ///< live frames rendered so far
+  uint64_t teacher_frames_ = 0;  ///< and teacher's views
 };
 
 }  // namespace recon::studio

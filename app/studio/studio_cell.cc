@@ -218,8 +218,8 @@ void StudioCell::PollGamepad(Clock::time_point now) {
   input.screen_right = pad.screen_right;
   input.screen_up = pad.screen_up;
   input.raise = pad.raise;
-  input.close_gripper = teleop_input_.close_gripper != pad.toggle_gripper;
   if (input != teleop_input_) Apply(input);
+  if (pad.toggle_gripper) Apply(ui::ToggleGripper{});
   if (pad.keep) Commit();
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "app/studio/cell_source.h"
+#include "app/studio/cell_view.h"
 #include "app/studio/device_scanner.h"
 #include "app/studio/gamepad_source.h"
 #include "app/studio/job_thread.h"
@@ -19,6 +20,7 @@
 #include "engine/teach/recorder.h"
 #include "engine/teach/stream_health.h"
 #include "engine/teach/workflow.h"
+#include "engine/worlds/orbit_camera.h"
 #include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/world.h"
 #include "ui/studio/studio_commands.h"
@@ -140,6 +142,8 @@ class StudioCell {
   void Apply(const ui::DismissErrors& c);
   void Apply(const ui::RescanDevices& c);
   void Apply(const ui::EmergencyStop& c);
+  void Apply(const ui::SetTeacherView& c);
+  void Apply(const ui::ToggleGripper& c);
 
   StudioOptions options_;
   RecentSessions recent_;
@@ -160,6 +164,8 @@ class StudioCell {
   std::optional<Deleted> last_deleted_;
   ui::TeleopMode teleop_mode_ = ui::TeleopMode::kScripted;
   ui::TeleopInput teleop_input_;
+  /// Where the teacher's 3-D view looks from; the arrows move the arm as it shows it.
+  worlds::OrbitCamera teacher_view_ = DefaultTeacherView();
   teach::TeleopCommand teleop_command_;
   std::unique_ptr<teach::PlayRecorder> play_;
   std::unique_ptr<RolloutPlayback> playback_;

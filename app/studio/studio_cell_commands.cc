@@ -138,8 +138,25 @@ void StudioCell::Apply(const ui::SetTeleopMode& c) {
 void StudioCell::Apply(const ui::TeleopInput& c) {
   teleop_input_ = c;
   const ViewSize view{options_.view_width, options_.view_height};
-  teleop_command_.velocity_m_s = source_->TeleopVelocity(*world_, c, view, kTeleopSpeed_m_s);
-  teleop_command_.close_gripper = c.close_gripper;
+  teleop_command_.velocity_m_s =
+      source_->TeleopVelocity(*world_, c, view, teacher_view_, kTeleopSpeed_m_s);
+}
+
+void StudioCell::Apply(const ui::ToggleGripper&) {
+  // Only a person's take has a gripper to toggle; between takes the key does nothing, as the
+  // arrows do.
+  if (!(recorder_ && recorder_->recording()) || teleop_mode_ == ui::TeleopMode::kScripted) return;
+  teleop_command_.close_gripper = !teleop_command_.close_gripper;
+}
+
+void StudioCell::Apply(const ui::SetTeacherView& c) {
+  worlds::OrbitCamera view = teacher_view_;
+  view.azimuth_deg = c.azimuth_deg;
+  view.elevation_deg = c.elevation_deg;
+  view.distance_m = c.distance_m;
+  teacher_view_ = view.Clamped();
+  // Keys held while the view turns now mean the new directions.
+  if (world_) Apply(teleop_input_);
 }
 
 void StudioCell::Apply(const ui::ShowSessionPicker& c) { picking_session_ = c.show && !Busy(); }

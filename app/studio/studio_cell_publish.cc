@@ -108,6 +108,11 @@ void StudioCell::RenderView(ui::StudioSnapshot& s) {
   if (source_->ShowLive(*world_, *session_, last_reading_, wanted, view, s)) {
     camera_health_.Add(Seconds(Clock::now()));
   }
+  // The teacher's 3-D view is the Record screen's only (shadows make it the costliest frame).
+  if (current_step_ == teach::Step::kRecord) {
+    source_->ShowTeacherView(*world_, teacher_view_,
+                             {options_.teacher_view_width, options_.teacher_view_height}, s);
+  }
 }
 
 void StudioCell::ShowDeviceHealth(ui::StudioSnapshot& s) const {

@@ -36,6 +36,9 @@ struct StudioOptions {
   int calibration_points = 12;
   int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)
   int view_height = 240;
+  /// The teacher's 3-D view on the Record screen (at most the scene's 640 x 480 buffer).
+  int teacher_view_width = 480;
+  int teacher_view_height = 360;
   /// A cell profile (devices/cell/cell_profile.h): teach with the real camera, beacons and UR5 it
   /// names instead of the simulated cell. Empty: the simulated cell.
   std::string cell_profile;

@@ -79,9 +79,9 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
       ->check(WholeBetween(480, 8192))
       ->capture_default_str();
   app.add_option("--ui-scale", flags.ui_scale,
-                 "draw the font and every size this much larger (2 on a high-DPI screen)")
-      ->check(NumberBetween(kMinUiScale, kMaxUiScale))
-      ->capture_default_str();
+                 "draw the font and every size this much larger (2 on a high-DPI screen); "
+                 "default: the screen's own scale in a window, 1 headless")
+      ->check(NumberBetween(kMinUiScale, kMaxUiScale));
   return frames;
 }
 

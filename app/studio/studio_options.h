@@ -21,7 +21,9 @@ struct StudioFlags {
   int frames = 60;
   bool frames_given = false;  ///< --frames on the command line: a window closes after them too
   int width = 1280;
-  float ui_scale = 1.0f;  ///< --ui-scale: the font and every size (2 on a high-DPI screen)
+  /// --ui-scale: the font and every size (2 on a high-DPI screen); 0 when not given: the
+  /// screen's content scale in a desktop window, 1 headless.
+  float ui_scale = 0.0f;
   int height = 800;
 };
 

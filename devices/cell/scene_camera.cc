@@ -21,4 +21,11 @@ tags::PinholeCamera SceneCamera(const worlds::MujocoModel& scene, const std::str
   return tags::PinholeCamera::FromMujoco(m->cam_fovy[id], width, height, position, rotation);
 }
 
+tags::PinholeCamera OrbitSceneCamera(const worlds::MujocoModel& scene,
+                                     const worlds::OrbitCamera& camera, int width, int height) {
+  const worlds::OrbitCamera c = camera.Clamped();
+  return tags::PinholeCamera::FromMujoco(scene.model()->vis.global.fovy, width, height,
+                                         c.Position(), c.Rotation());
+}
+
 }  // namespace recon::cell

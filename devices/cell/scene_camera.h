@@ -4,6 +4,7 @@
 
 #include "devices/tags/pinhole_camera.h"
 #include "engine/worlds/mujoco_model.h"
+#include "engine/worlds/orbit_camera.h"
 
 namespace recon::cell {
 
@@ -13,5 +14,10 @@ namespace recon::cell {
 /// unknown camera.
 tags::PinholeCamera SceneCamera(const worlds::MujocoModel& scene, const std::string& camera,
                                 int width, int height);
+
+/// The same for a free camera of the scene (MujocoRenderer::RenderOrbit's images): its field of
+/// view is the scene's <visual><global fovy>.
+tags::PinholeCamera OrbitSceneCamera(const worlds::MujocoModel& scene,
+                                     const worlds::OrbitCamera& camera, int width, int height);
 
 }  // namespace recon::cell

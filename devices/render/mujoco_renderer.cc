@@ -169,6 +169,46 @@ MujocoRenderer::~MujocoRenderer() {
 
 const std::string& MujocoRenderer::context_description() const { return state_->egl.description(); }
 
+namespace {
+
+/// UserError unless width x height fits the scene's offscreen buffer; `what` names the view.
+void CheckSize(const mjModel* m, int width, int height, const std::string& what) {
+  const int max_width = m->vis.global.offwidth, max_height = m->vis.global.offheight;
+  if (width <= 0 || height <= 0 || width > max_width || height > max_height) {
+    throw UserError("cannot render a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " image from " + what + " of MuJoCo scene \"" + ModelName(m) +
+                    "\": its offscreen buffer is " + std::to_string(max_width) + "x" +
+                    std::to_string(max_height) +
+                    " (raise <visual><global offwidth=\"..\" offheight=\"..\"/>)");
+  }
+}
+
+/// Adds `marker` to the scene's geoms (decorations: no physics, not selectable); false when the
+/// scene has no room left.
+bool AddMarker(const worlds::SceneMarker& marker, mjvScene& scene) {
+  if (scene.ngeom >= scene.maxgeom) return false;
+  mjvGeom& g = scene.geoms[scene.ngeom];
+  const float rgba[4] = {marker.rgba[0], marker.rgba[1], marker.rgba[2], marker.rgba[3]};
+  if (marker.shape == worlds::SceneMarker::Shape::kDisc) {
+    // mjv_initGeom takes a model geom's sizes: a cylinder's radius, then its half-height.
+    const mjtNum size[3] = {marker.radius_m, 0.0005, 0};
+    const mjtNum pos[3] = {marker.from.x(), marker.from.y(), marker.from.z()};
+    const mjtNum identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    mjv_initGeom(&g, mjGEOM_CYLINDER, size, pos, identity, rgba);
+  } else {
+    mjv_initGeom(&g, mjGEOM_CYLINDER, nullptr, nullptr, nullptr, rgba);
+    mjv_makeConnector(&g, mjGEOM_CYLINDER, marker.radius_m, marker.from.x(), marker.from.y(),
+                      marker.from.z(), marker.to.x(), marker.to.y(), marker.to.z());
+  }
+  g.category = mjCAT_DECOR;
+  g.objtype = mjOBJ_UNKNOWN;
+  g.objid = -1;
+  ++scene.ngeom;
+  return true;
+}
+
+}  // namespace
+
 RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& camera, int width,
                                 int height) {
   const mjModel* m = scene.model();
@@ -177,21 +217,45 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
     throw UserError("MuJoCo scene \"" + ModelName(m) + "\" has no camera \"" + camera + "\"; " +
                     CameraNames(m));
   }
-  const int max_width = m->vis.global.offwidth, max_height = m->vis.global.offheight;
-  if (width <= 0 || height <= 0 || width > max_width || height > max_height) {
-    throw UserError("cannot render a " + std::to_string(width) + "x" + std::to_string(height) +
-                    " image from camera \"" + camera + "\" of MuJoCo scene \"" + ModelName(m) +
-                    "\": its offscreen buffer is " + std::to_string(max_width) + "x" +
-                    std::to_string(max_height) +
-                    " (raise <visual><global offwidth=\"..\" offheight=\"..\"/>)");
-  }
+  CheckSize(m, width, height, "camera \"" + camera + "\"");
+  State& s = *state_;
+  s.camera.type = mjCAMERA_FIXED;
+  s.camera.fixedcamid = camera_id;
+  return Draw(scene, {}, false, width, height, "camera \"" + camera + "\"");
+}
 
+RgbImage MujocoRenderer::RenderOrbit(worlds::MujocoModel& scene, const worlds::OrbitCamera& camera,
+                                     const std::vector<worlds::SceneMarker>& markers, int width,
+                                     int height) {
+  CheckSize(scene.model(), width, height, "the free camera");
+  State& s = *state_;
+  const worlds::OrbitCamera c = camera.Clamped();
+  s.camera.type = mjCAMERA_FREE;
+  for (int i = 0; i < 3; ++i) s.camera.lookat[i] = c.lookat[i];
+  s.camera.distance = c.distance_m;
+  s.camera.azimuth = c.azimuth_deg;
+  s.camera.elevation = c.elevation_deg;
+  return Draw(scene, markers, true, width, height, "the free camera");
+}
+
+RgbImage MujocoRenderer::Draw(worlds::MujocoModel& scene,
+                              const std::vector<worlds::SceneMarker>& markers, bool shadows,
+                              int width, int height, const std::string& what) {
+  const mjModel* m = scene.model();
   State& s = *state_;
   ScopedCurrent current(s.egl);
   ModelResources& r = s.Prepare(m);
-  s.camera.type = mjCAMERA_FIXED;
-  s.camera.fixedcamid = camera_id;
   mjv_updateScene(m, scene.data(), &s.option, &s.perturb, &s.camera, mjCAT_ALL, &r.scene);
+  for (const worlds::SceneMarker& marker : markers) {
+    if (!AddMarker(marker, r.scene)) break;
+  }
+  // A person's view casts shadows from the scene's lights (not the headlight, which moves with
+  // the camera): the gripper's shadow on the table says how high it is. Policies' images keep
+  // them off (Prepare), which is most of llvmpipe's time per small frame.
+  r.scene.flags[mjRND_SHADOW] = shadows ? 1 : 0;
+  for (int i = 0; i < r.scene.nlight; ++i) {
+    if (!r.scene.lights[i].headlight) r.scene.lights[i].castshadow = shadows ? 1 : 0;
+  }
 
   const mjrRect viewport = {0, 0, width, height};
   std::unique_lock draw_lock(PixelReadbackMutex());
@@ -209,8 +273,8 @@ RgbImage MujocoRenderer::Render(worlds::MujocoModel& scene, const std::string& c
   const GLenum error = glGetError();
   draw_lock.unlock();
   if (error != GL_NO_ERROR) {
-    throw std::runtime_error("OpenGL error " + Hex(error) + " while rendering camera \"" + camera +
-                             "\" of MuJoCo scene \"" + ModelName(m) + "\"");
+    throw std::runtime_error("OpenGL error " + Hex(error) + " while rendering " + what +
+                             " of MuJoCo scene \"" + ModelName(m) + "\"");
   }
 
   RgbImage image;
@@ -242,6 +306,11 @@ class SharedRenderer final : public worlds::SceneRenderer {
   RgbImage Render(worlds::MujocoModel& scene, const std::string& camera, int width,
                   int height) override {
     return renderer_->Render(scene, camera, width, height);
+  }
+  RgbImage RenderOrbit(worlds::MujocoModel& scene, const worlds::OrbitCamera& camera,
+                       const std::vector<worlds::SceneMarker>& markers, int width,
+                       int height) override {
+    return renderer_->RenderOrbit(scene, camera, markers, width, height);
   }
 
  private:

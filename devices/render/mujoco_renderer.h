@@ -2,6 +2,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "engine/worlds/scene_renderer.h"
 
@@ -30,12 +31,19 @@ class MujocoRenderer final : public worlds::SceneRenderer {
 
   RgbImage Render(worlds::MujocoModel& scene, const std::string& camera, int width,
                   int height) override;
+  RgbImage RenderOrbit(worlds::MujocoModel& scene, const worlds::OrbitCamera& camera,
+                       const std::vector<worlds::SceneMarker>& markers, int width,
+                       int height) override;
 
   /// The OpenGL context in use, for logs ("EGL 1.5 surfaceless; OpenGL 4.5 ... llvmpipe ...").
   const std::string& context_description() const;
 
  private:
   struct State;  // EGL context and MuJoCo's visualisation structs, kept out of this header
+  /// Draws the scene from the camera set in the state, with `markers` and (or without) shadows,
+  /// and reads the image back; `what` names the camera in errors.
+  RgbImage Draw(worlds::MujocoModel& scene, const std::vector<worlds::SceneMarker>& markers,
+                bool shadows, int width, int height, const std::string& what);
   std::unique_ptr<State> state_;
 };
 

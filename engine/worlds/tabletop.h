@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/core/image.h"
@@ -14,6 +15,14 @@
 #include "engine/worlds/world.h"
 
 namespace recon::worlds {
+
+/// What the gripper does with the toast, as a teacher's readout says it.
+enum class ToastGrip {
+  kOpen,             ///< the gripper is open
+  kClosing,          ///< the fingers are on their way in, nothing held yet
+  kHolding,          ///< the toast is in the gripper
+  kClosedOnNothing,  ///< the fingers shut without the toast between them
+};
 
 /// How a Tabletop world is configured.
 struct TabletopOptions {
@@ -128,6 +137,17 @@ class Tabletop : public World {
   MujocoModel& scene() { return scene_; }
   Ur5Arm& arm() { return *arm_; }
   const Ur5Arm& arm() const { return *arm_; }
+
+  /// What the gripper does with the toast now.
+  ToastGrip GripOnToast() const;
+  /// The top of what lies straight under the grip point (the toast, the plate, the table...),
+  /// the arm and a held toast left out: where a teacher's drop line from the gripper lands, so
+  /// a spot drawn there lies on what the gripper would come down onto.
+  Eigen::Vector3d SurfaceBelowGrip() const;
+  /// The grip point's heights above the table at which closing the gripper over the toast holds
+  /// it: from the safety envelope's tool floor (the lowest the tips go) to where the finger pads
+  /// still reach the slice's side (Ur5Arm::HighestGraspHeight).
+  std::pair<double, double> GraspHeights() const;
 
   /// What the safety envelope did to this world's commands since it was made.
   const safety::SafetyStats& safety_stats() const { return safety_.stats(); }

@@ -54,6 +54,30 @@ int RequireId(const mjModel* m, mjtObj type, const std::string& name, const char
 
 double Clamp(double v, double lo, double hi) { return std::min(hi, std::max(lo, v)); }
 
+/// How far `object` reaches from its centre along the unit direction `axis`: the support of its
+/// boxes (or spheres and cylinders, by their radius) in that direction.
+double HalfExtent(const MujocoModel& scene, int object, const Eigen::Vector3d& axis) {
+  const mjModel* m = scene.model();
+  const mjData* d = scene.data();
+  double half = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] != object) continue;
+    const mjtNum* size = m->geom_size + 3 * g;
+    const mjtNum* ro = d->geom_xmat + 9 * g;
+    double extent = 0;
+    if (m->geom_type[g] == mjGEOM_BOX) {
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d column(ro[k], ro[3 + k], ro[6 + k]);
+        extent += std::abs(axis.dot(column)) * size[k];
+      }
+    } else {
+      extent = size[0];
+    }
+    half = std::max(half, extent);
+  }
+  return half;
+}
+
 }  // namespace
 
 void Ur5Arm::ScratchDeleter::operator()(mjData_* d) const { mj_deleteData(d); }
@@ -164,7 +188,6 @@ int Ur5Arm::FindGraspable() const {
 }
 
 std::optional<double> Ur5Arm::GraspOffset(int object) const {
-  const mjModel* m = scene_->model();
   const mjData* d = scene_->data();
   // The gripper's axes in the world: x closes the fingers, y runs along their faces, z points out
   // of the tool (down, toward the table, when it points down).
@@ -173,26 +196,9 @@ std::optional<double> Ur5Arm::GraspOffset(int object) const {
       {rg[0], rg[3], rg[6]}, {rg[1], rg[4], rg[7]}, {rg[2], rg[5], rg[8]}};
   const mjtNum* p = d->xpos + 3 * object;
   const Eigen::Vector3d offset = Eigen::Vector3d(p[0], p[1], p[2]) - GripPosition();
-  // The object's half-extent along each gripper axis: the support of its boxes (or spheres and
-  // cylinders, by their radius) in that direction.
-  double half[3] = {0, 0, 0};
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] != object) continue;
-    const mjtNum* size = m->geom_size + 3 * g;
-    const mjtNum* ro = d->geom_xmat + 9 * g;
-    for (int a = 0; a < 3; ++a) {
-      double extent = 0;
-      if (m->geom_type[g] == mjGEOM_BOX) {
-        for (int k = 0; k < 3; ++k) {
-          const Eigen::Vector3d column(ro[k], ro[3 + k], ro[6 + k]);
-          extent += std::abs(axis[a].dot(column)) * size[k];
-        }
-      } else {
-        extent = size[0];
-      }
-      half[a] = std::max(half[a], extent);
-    }
-  }
+  const double half[3] = {HalfExtent(*scene_, object, axis[0]),
+                          HalfExtent(*scene_, object, axis[1]),
+                          HalfExtent(*scene_, object, axis[2])};
   const double along_closing = axis[0].dot(offset), along_faces = axis[1].dot(offset);
   const double along_tool = axis[2].dot(offset);
   // A parallel gripper centres what it closes on, as long as it starts between the open fingers.
@@ -206,6 +212,16 @@ std::optional<double> Ur5Arm::GraspOffset(int object) const {
       std::min(0.0, along_tool + half[2]) - std::max(-kFingerPadLength_m, along_tool - half[2]);
   if (overlap < std::min(kMinPadOverlap_m, 2 * half[2])) return std::nullopt;
   return offset.norm();
+}
+
+std::optional<double> Ur5Arm::HighestGraspHeight(const std::string& object) const {
+  const int body = mj_name2id(scene_->model(), mjOBJ_BODY, object.c_str());
+  if (body < 0) return std::nullopt;
+  // With the tool pointing down, the pads run from the tips up: the tips may be at most this far
+  // below the object's top and still have kMinPadOverlap_m of it between the pads (GraspOffset).
+  const double half = HalfExtent(*scene_, body, Eigen::Vector3d::UnitZ());
+  const double top = scene_->data()->xpos[3 * body + 2] + half;
+  return top - std::min(kMinPadOverlap_m, 2 * half);
 }
 
 void Ur5Arm::UpdateGrasp() {

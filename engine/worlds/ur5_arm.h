@@ -54,6 +54,10 @@ class Ur5Arm {
   int HeldObject() const { return held_object_; }
   /// Names of the bodies the gripper can hold (those with a grasp_<body> weld).
   std::vector<std::string> GraspableObjects() const;
+  /// The highest the grip point (world z) may be, tool pointing down, for closing the gripper
+  /// over body `object` where it lies now to hold it: the finger pads must reach down its side.
+  /// Nullopt for a body the scene does not have. What a teacher's height readout marks.
+  std::optional<double> HighestGraspHeight(const std::string& object) const;
 
   /// Sets the joint velocity command (rad/s); each entry is clamped to kMaxJointSpeed_rad_s.
   /// Non-finite entries are treated as 0 (a safety stop, not an exception, inside a rollout).

@@ -76,31 +76,47 @@ class StudioControllerTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// The arrows move the arm the way the camera view shows it, Page Down lowers it, Space closes
-// the gripper, and Stop keeps the demonstration as a keyboard-teleop episode.
-TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheCameraShowsIt) {
+// The arrows move the arm the way the teacher's 3-D view shows it (turn the view, and they turn
+// with it), Page Down lowers it, Space closes the gripper, and Stop keeps the demonstration as a
+// keyboard-teleop episode.
+TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheTeachersViewShowsIt) {
   auto owner = std::make_unique<StudioController>(Options());
   StudioController& controller = *owner;
+  controller.Push(ui::OpenStep{teach::Step::kRecord});  // where the 3-D view is drawn
   controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
   controller.Push(ui::StartRecording{});
-  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  ui::StudioSnapshot s = WaitFor(
+      controller, [](const auto& now) { return now.recording && now.teacher_view.available; });
   ASSERT_EQ(s.teleop, ui::TeleopMode::kKeyboard);
-  const std::array<float, 2> start_pixel = s.grip_pixel;
+  const std::array<float, 2> start_pixel = s.teacher_view.spot_pixel;
   const std::array<float, 3> start = s.grip_m;
 
   ui::TeleopInput right;
   right.screen_right = 1;
   controller.Push(right);
   s = WaitFor(
-      controller, [&](const auto& now) { return now.grip_pixel[0] > start_pixel[0] + 20; }, 20);
-  EXPECT_GT(s.grip_pixel[0], start_pixel[0] + 20);
-  EXPECT_NEAR(s.grip_pixel[1], start_pixel[1], 6) << "moving right must not drift up or down";
+      controller,
+      [&](const auto& now) { return now.teacher_view.spot_pixel[0] > start_pixel[0] + 20; }, 20);
+  EXPECT_GT(s.teacher_view.spot_pixel[0], start_pixel[0] + 20);
+  EXPECT_NEAR(s.teacher_view.spot_pixel[1], start_pixel[1], 6) << "right must not drift up or down";
   EXPECT_NEAR(s.grip_m[2], start[2], 0.01);
+
+  // Turned to look from the front, the same key moves the arm to that view's right: along the
+  // table's +y instead of its +x.
+  controller.Push(ui::TeleopInput{});
+  controller.Push(ui::SetTeacherView{180, -40, 1.4f});
+  s = WaitFor(controller, [](const auto& now) { return now.teacher_view.azimuth_deg == 180; });
+  const std::array<float, 3> before_turned = s.grip_m;
+  controller.Push(right);
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.grip_m[1] > before_turned[1] + 0.04; }, 20);
+  EXPECT_GT(s.grip_m[1], before_turned[1] + 0.04);
+  EXPECT_NEAR(s.grip_m[0], before_turned[0], 0.015) << "along +y only";
 
   ui::TeleopInput lower;
   lower.raise = -1;
-  lower.close_gripper = true;
   controller.Push(lower);
+  controller.Push(ui::ToggleGripper{});
   const float before_lowering = s.grip_m[2];
   s = WaitFor(
       controller, [&](const auto& now) { return now.grip_m[2] < before_lowering - 0.05; }, 20);
@@ -125,6 +141,28 @@ TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheCameraShowsIt) {
   EXPECT_EQ(opened.demos()[0].meta.source, "keyboard-teleop");
 }
 
+// Demonstrations from two teleops are flagged (a policy learns best from one teacher's style),
+// and marking the odd one Bad clears it.
+TEST_F(StudioControllerTest, DemonstrationsFromTwoTeachersAreFlagged) {
+  StudioController controller(Options());
+  controller.Push(ui::StartRecording{});  // the scripted teacher
+  ui::StudioSnapshot s = WaitFor(
+      controller, [](const auto& now) { return !now.recording && now.episodes.size() == 1; });
+  EXPECT_EQ(s.teacher_mix_warning, "");
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+  controller.Push(ui::StartRecording{});
+  WaitFor(controller, [](const auto& now) { return now.recording_samples > 3; });
+  controller.Push(ui::StopRecording{});  // kept, not done
+  s = WaitFor(controller,
+              [](const auto& now) { return !now.recording && now.episodes.size() == 2; });
+  ASSERT_EQ(s.episodes.size(), 2u);
+  EXPECT_NE(s.teacher_mix_warning.find("2 teachers"), std::string::npos) << s.teacher_mix_warning;
+  controller.Push(ui::MarkEpisodeBad{s.episodes[1].name, true});
+  s = WaitFor(controller,
+              [](const auto& now) { return now.episodes.size() == 2 && now.episodes[1].bad; });
+  EXPECT_EQ(s.teacher_mix_warning, "");
+}
+
 // A gamepad (here a FIFO carrying the joystick API's events, as /dev/input/js0 would) is found,
 // drives the arm with its left stick, grips with A, keeps the take with Start, and its
 // unplugging stops the arm and is reported.
@@ -146,15 +184,19 @@ TEST_F(StudioControllerTest, AGamepadDrivesTheArmAndItsUnpluggingIsReported) {
     }
     return false;
   });
+  controller.Push(ui::OpenStep{teach::Step::kRecord});  // where the 3-D view is drawn
   controller.Push(ui::SetTeleopMode{ui::TeleopMode::kGamepad});
   controller.Push(ui::StartRecording{});
-  s = WaitFor(controller, [](const auto& now) { return now.recording; });
+  s = WaitFor(controller,
+              [](const auto& now) { return now.recording && now.teacher_view.available; });
   EXPECT_EQ(s.teleop, ui::TeleopMode::kGamepad);
-  const std::array<float, 2> start = s.grip_pixel;
+  // The stick, like the arrows, moves the arm as the teacher's view shows it.
+  const std::array<float, 2> start = s.teacher_view.spot_pixel;
   send(JS_EVENT_AXIS, 0, 32767);  // left stick right
   s = WaitFor(
-      controller, [&](const auto& now) { return now.grip_pixel[0] > start[0] + 20; }, 20);
-  EXPECT_NEAR(s.grip_pixel[1], start[1], 6);
+      controller, [&](const auto& now) { return now.teacher_view.spot_pixel[0] > start[0] + 20; },
+      20);
+  EXPECT_NEAR(s.teacher_view.spot_pixel[1], start[1], 6);
   send(JS_EVENT_AXIS, 0, 0);
   send(JS_EVENT_BUTTON, 0, 1);  // A: grip
   s = WaitFor(

@@ -34,6 +34,7 @@
 #include "tests/support/run_command.h"
 
 // Last: Xlib defines macros (None, Bool, Status, Success) that other headers use as names.
+#include <X11/Xatom.h>
 #include <X11/Xlib.h>
 #include <X11/Xutil.h>
 
@@ -136,6 +137,15 @@ class VirtualDisplay {
   /// A command line run with DISPLAY set to this server, stderr joined to stdout.
   testing::CommandResult Run(const std::string& command) const {
     return testing::RunCommand("DISPLAY=" + name_ + " " + command);
+  }
+
+  /// Sets the server's resource database (what xrdb would load), e.g. "Xft.dpi:\t192\n": where
+  /// desktops keep the screen's DPI setting, which clients read as their content scale.
+  void SetResources(const std::string& resources) const {
+    XChangeProperty(x_, DefaultRootWindow(x_), XA_RESOURCE_MANAGER, XA_STRING, 8, PropModeReplace,
+                    reinterpret_cast<const unsigned char*>(resources.data()),
+                    static_cast<int>(resources.size()));
+    XSync(x_, False);
   }
 
   /// The X window whose title matches `title` (an xdotool regular expression), once it is
@@ -395,6 +405,40 @@ TEST(DesktopWindowTest, WithoutADisplayItIsAUserErrorNamingIt) {
     EXPECT_NE(std::string(e.what()).find("cannot open a desktop window"), std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find(display), std::string::npos) << e.what();
+  }
+}
+
+// A high-DPI desktop (its DPI setting, Xft.dpi, at twice the 96 of a plain screen) gets the
+// studio at UI scale 2 without --ui-scale; a scale given wins; an absurd setting is held to the
+// largest scale the studio draws.
+TEST(DesktopWindowTest, TheUiScaleFollowsTheScreensUnlessOneIsGiven) {
+  VirtualDisplay display;
+  ASSERT_EQ(display.error(), "");
+  setenv("DISPLAY", display.name().c_str(), 1);
+  DesktopWindow::Options options;
+  options.title = "scale test";
+  options.renderer = {320, 200, 16.0f, 1.0f};
+  options.ui_scale_from_screen = true;
+  {
+    DesktopWindow window(options);  // no DPI setting: a plain screen
+    EXPECT_FLOAT_EQ(window.ui_scale(), 1.0f);
+  }
+  display.SetResources("Xft.dpi:\t192\n");
+  {
+    DesktopWindow window(options);
+    EXPECT_FLOAT_EQ(window.ui_scale(), 2.0f);
+  }
+  options.ui_scale_from_screen = false;
+  options.renderer.ui_scale = 1.5f;
+  {
+    DesktopWindow window(options);
+    EXPECT_FLOAT_EQ(window.ui_scale(), 1.5f);
+  }
+  display.SetResources("Xft.dpi:\t960\n");
+  options.ui_scale_from_screen = true;
+  {
+    DesktopWindow window(options);
+    EXPECT_FLOAT_EQ(window.ui_scale(), options.max_ui_scale);
   }
 }
 

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <imgui.h>
+#include <imgui_internal.h>
 
+#include <map>
+#include <optional>
 #include <variant>
 
 #include "engine/core/error.h"
@@ -15,6 +18,7 @@
 #include "ui/platform/headless_window.h"
 #include "ui/studio/studio_ui.h"
 #include "ui/testing/ui_driver.h"
+#include "ui/widgets/widget_registry.h"
 
 namespace recon::ui {
 namespace {
@@ -307,8 +311,8 @@ TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
     if (const auto* input = std::get_if<TeleopInput>(&c)) {
       right |= input->screen_right == 1 && input->screen_up == 0 && input->raise == 0;
       up |= input->raise == 1 && input->screen_right == 0;
-      grip |= input->close_gripper;
     }
+    grip |= std::holds_alternative<ToggleGripper>(c);
     stop |= std::holds_alternative<StopRecording>(c);
   }
   EXPECT_TRUE(right) << "the right arrow";
@@ -324,6 +328,30 @@ TEST(StudioCommandTest, KeysDriveTheArmWhileAKeyboardDemonstrationRecords) {
   EXPECT_TRUE(harness.Commands().empty());
   EXPECT_THROW(harness.driver().RunScript("hold right\n"), UserError);
   EXPECT_THROW(harness.driver().RunScript("hold sideways 1\n"), UserError);
+}
+
+// The snapshot lags the commands (here it never catches up): Space then Page Up at once toggles
+// the gripper once and never sends it back, and a key tapped and let go before the controller
+// has shown it still stops the arm.
+TEST(StudioCommandTest, KeysAreSentWhateverTheSnapshotHasCaughtUpWith) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  s.teleop = TeleopMode::kKeyboard;
+  s.recording = true;
+  harness.Show(s);
+  harness.Commands();
+  harness.driver().RunScript("press space\nhold pageup 0.05\n");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  int toggles = 0;
+  std::vector<TeleopInput> inputs;
+  for (const StudioCommand& c : commands) {
+    toggles += std::holds_alternative<ToggleGripper>(c) ? 1 : 0;
+    if (const auto* input = std::get_if<TeleopInput>(&c)) inputs.push_back(*input);
+  }
+  EXPECT_EQ(toggles, 1);
+  ASSERT_GE(inputs.size(), 2u);
+  EXPECT_EQ(inputs.front().raise, 1) << "page up";
+  EXPECT_EQ(inputs.back(), TeleopInput{}) << "let go: the arm stops";
 }
 
 }  // namespace
@@ -499,10 +527,10 @@ TEST(StudioCommandTest, ATakeShowsItsLimitAndAnUnfinishedOneWaitsForKeepOrDiscar
   pending.pending_take = "The take reached its 20 s limit before the task was done";
   harness.Show(pending);
   harness.Commands();
-  EXPECT_FALSE(harness.driver().Drawn("Start recording"));
+  EXPECT_THROW(harness.driver().Click("Start recording"), UserError);  // there, disabled
   EXPECT_THROW(harness.driver().Click("Delete##demo_0"), UserError);
   harness.driver().Click("Keep as not done");
-  harness.driver().Click("Discard##pending");
+  harness.driver().Click("Discard##take");
   const std::vector<StudioCommand> commands = harness.Commands();
   ASSERT_EQ(commands.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<StopRecording>(commands[0]));
@@ -545,6 +573,249 @@ TEST(StudioCommandTest, AWrittenReportOpensInTheBrowser) {
   const std::vector<StudioCommand> commands = harness.Commands();
   ASSERT_EQ(commands.size(), 1u);
   EXPECT_TRUE(std::holds_alternative<OpenReport>(commands[0]));
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+/// The last SetTeacherView among `commands`, if any.
+std::optional<SetTeacherView> LastViewCommand(const std::vector<StudioCommand>& commands) {
+  std::optional<SetTeacherView> last;
+  for (const StudioCommand& c : commands) {
+    if (const auto* view = std::get_if<SetTeacherView>(&c)) last = *view;
+  }
+  return last;
+}
+
+// Dragging the 3-D view sideways turns it around the table, dragging it down looks from higher
+// up, the wheel steps closer, and the presets jump to a side, the front or above. Each drag is
+// measured from where it started, so a snapshot that lags the commands loses nothing.
+TEST(StudioCommandTest, TheTeachersViewTurnsWhenDraggedAndZoomsWithTheWheel) {
+  StudioHarness harness;
+  harness.Show(SnapshotAt(Progress::kRecorded, teach::Step::kRecord));
+  harness.Commands();
+  harness.driver().Drag("teacher-view", 50, 0);
+  std::optional<SetTeacherView> view = LastViewCommand(harness.Commands());
+  ASSERT_TRUE(view.has_value());
+  EXPECT_NEAR(view->azimuth_deg, 90 - 50 * 0.4, 1e-3);
+  EXPECT_NEAR(view->elevation_deg, -35, 1e-3);
+  EXPECT_NEAR(view->distance_m, 1.3, 1e-6);
+
+  harness.driver().Drag("teacher-view", 0, 25);
+  view = LastViewCommand(harness.Commands());
+  ASSERT_TRUE(view.has_value());
+  EXPECT_NEAR(view->azimuth_deg, 90, 1e-3);
+  EXPECT_NEAR(view->elevation_deg, -35 - 25 * 0.4, 1e-3);
+
+  harness.driver().Scroll("teacher-view", 1);
+  view = LastViewCommand(harness.Commands());
+  ASSERT_TRUE(view.has_value());
+  EXPECT_NEAR(view->distance_m, 1.3 * 0.9, 1e-5);
+
+  harness.driver().Click("Front##view");
+  view = LastViewCommand(harness.Commands());
+  ASSERT_TRUE(view.has_value());
+  EXPECT_EQ(view->azimuth_deg, 180);
+  EXPECT_EQ(view->elevation_deg, -40);
+  // A real cell has no 3-D view: the camera takes its place, and nothing turns.
+  StudioSnapshot real = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  real.teacher_view = {};
+  harness.Show(real);
+  EXPECT_FALSE(harness.driver().Drawn("teacher-view"));
+  EXPECT_TRUE(harness.driver().Drawn("camera##record"));
+}
+
+// What the grip does is said in words, and each state of it draws (a golden each for the two a
+// teacher must tell apart).
+TEST(StudioScreenTest, TheGripStateAndTheKeyMappingsShowOnTheRecordScreen) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  s.teleop = TeleopMode::kKeyboard;
+  s.grip_m[2] = 0.009f;
+  s.gripper_closed = true;
+  s.grip.state = GripState::kHolding;
+  harness.Show(s);
+  EXPECT_TRUE(
+      ::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("record_holding")));
+  s.grip.state = GripState::kClosedOnNothing;
+  s.grip_m[2] = 0.04f;
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("record_closed_on_nothing")));
+}
+
+// keyboard-take gives a take only while one runs with the keyboard, and says so otherwise.
+TEST(StudioCommandTest, AKeyboardTakeNeedsAKeyboardTakeRunning) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().RunScript("keyboard-take 5\n"), UserError);  // no snapshot source
+  harness.driver().SetSnapshotSource([&] { return s; });
+  try {
+    harness.driver().RunScript("keyboard-take 5\n");
+    ADD_FAILURE() << "a keyboard take ran with no take recording";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("no keyboard take is running"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+/// Where every labelled widget of the last frame was drawn.
+std::map<std::string, WidgetRect> Layout() {
+  std::map<std::string, WidgetRect> layout;
+  const WidgetRegistry& registry = WidgetRegistry::ForThisThread();
+  for (const std::string& label : registry.Labels()) layout[label] = *registry.Find(label);
+  return layout;
+}
+
+/// Shows each snapshot in turn: every widget drawn both before and after a change stays where
+/// it was, so a click aimed at it as the state changes lands on it.
+void ExpectNothingMoves(const std::vector<std::pair<std::string, StudioSnapshot>>& states) {
+  StudioHarness harness;
+  harness.Show(states[0].second);
+  std::map<std::string, WidgetRect> before = Layout();
+  for (size_t i = 1; i < states.size(); ++i) {
+    harness.Show(states[i].second);
+    const std::map<std::string, WidgetRect> after = Layout();
+    int common = 0;
+    for (const auto& [label, rect] : before) {
+      const auto it = after.find(label);
+      if (it == after.end()) continue;
+      ++common;
+      EXPECT_NEAR(it->second.min_x, rect.min_x, 0.5) << states[i].first << ": " << label;
+      EXPECT_NEAR(it->second.min_y, rect.min_y, 0.5) << states[i].first << ": " << label;
+    }
+    EXPECT_GE(common, 5) << states[i].first;
+    before = after;
+  }
+}
+
+// The keyboard is chosen, a take starts, counts down, runs, ends unfinished, is kept; the grip
+// opens, closes on nothing, holds: what stays on the Record screen stays put.
+TEST(StudioLayoutTest, NothingMovesOnTheRecordScreenAsATakeRuns) {
+  const StudioSnapshot scripted = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  StudioSnapshot idle = scripted;
+  idle.teleop = TeleopMode::kKeyboard;
+  StudioSnapshot countdown = idle;
+  countdown.recording = true;
+  countdown.countdown_s = 2.5;
+  countdown.busy_with = "the recording";
+  StudioSnapshot running = countdown;
+  running.countdown_s = 0;
+  running.recording_samples = 40;
+  running.recording_max_samples = 200;
+  running.grip_m[2] = 0.02f;
+  StudioSnapshot low = running;
+  low.grip_m[2] = 0.009f;
+  StudioSnapshot closing = low;
+  closing.gripper_closed = true;
+  closing.grip.state = GripState::kClosing;
+  StudioSnapshot missed = closing;
+  missed.grip.state = GripState::kClosedOnNothing;
+  StudioSnapshot holding = closing;
+  holding.grip.state = GripState::kHolding;
+  StudioSnapshot last_seconds = holding;
+  last_seconds.recording_samples = 170;
+  StudioSnapshot pending = idle;
+  pending.pending_take = "The take reached its 20 s limit without the task done";
+  StudioSnapshot kept = idle;
+  kept.episodes.push_back({"demo_4", 200, 20.0, false, false, "train", ""});
+  ExpectNothingMoves({{"scripted", scripted},
+                      {"keyboard chosen", idle},
+                      {"countdown", countdown},
+                      {"running", running},
+                      {"low", low},
+                      {"closing", closing},
+                      {"closed on nothing", missed},
+                      {"holding", holding},
+                      {"last seconds", last_seconds},
+                      {"pending", pending},
+                      {"kept", kept}});
+}
+
+// An error arrives while a teacher works (a failed save, a device gone): it is shown without
+// pushing the screen's controls down under the pointer.
+TEST(StudioLayoutTest, AnErrorArrivingMovesNothing) {
+  for (const teach::Step step :
+       {teach::Step::kRecord, teach::Step::kTrain, teach::Step::kRollouts, teach::Step::kCell}) {
+    StudioSnapshot quiet = SnapshotAt(Progress::kDone, step);
+    StudioSnapshot failed = quiet;
+    failed.errors = {"cannot save demo_4: No space left on device (/data/sessions/toast)",
+                     "the gamepad was unplugged; the arm holds still"};
+    ExpectNothingMoves({{"quiet", quiet}, {"an error", failed}, {"dismissed", quiet}});
+  }
+  StudioHarness harness;
+  StudioSnapshot failed = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  failed.errors = {"cannot save demo_4: No space left on device (/data/sessions/toast)"};
+  harness.Show(failed);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("errors")));
+  harness.driver().Click("Dismiss");
+  const std::vector<StudioCommand> commands = harness.Commands();
+  ASSERT_EQ(commands.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<DismissErrors>(commands[0]));
+}
+
+// Training and rollouts start, run, are cancelled and end: the screens' controls stay put.
+TEST(StudioLayoutTest, NothingMovesAsTrainingAndRolloutsRun) {
+  StudioSnapshot train_idle = SnapshotAt(Progress::kTrained, teach::Step::kTrain);
+  StudioSnapshot training = train_idle;
+  training.training_running = true;
+  training.busy_with = "the training";
+  StudioSnapshot cancelling = training;
+  cancelling.training_cancelling = true;
+  ExpectNothingMoves({{"idle", train_idle},
+                      {"training", training},
+                      {"cancelling", cancelling},
+                      {"done", train_idle}});
+
+  StudioSnapshot rollouts_idle = SnapshotAt(Progress::kDone, teach::Step::kRollouts);
+  StudioSnapshot rolling = rollouts_idle;
+  rolling.rollouts_running = true;
+  rolling.rollout_steps_done = 120;
+  rolling.rollout_steps_total = 400;
+  rolling.busy_with = "the rollouts";
+  ExpectNothingMoves({{"idle", rollouts_idle}, {"running", rolling}, {"done", rollouts_idle}});
+}
+
+}  // namespace
+}  // namespace recon::ui
+
+namespace recon::ui {
+namespace {
+
+bool TooltipShown() {
+  const ImGuiWindow* tooltip = ImGui::FindWindowByName("##Tooltip_00");
+  return tooltip != nullptr && tooltip->Active;
+}
+
+// A disabled button says why once the pointer is moved onto it and rests; a button that turns
+// disabled under a pointer that stayed where it clicked (Start recording as the take counts
+// down) raises no tooltip over what the click brought up.
+TEST(StudioCommandTest, ADisabledButtonSaysWhyOnlyWhenThePointerComesToIt) {
+  StudioHarness harness;
+  StudioSnapshot idle = SnapshotAt(Progress::kRecorded, teach::Step::kRecord);
+  idle.teleop = TeleopMode::kKeyboard;
+  StudioSnapshot countdown = idle;
+  countdown.recording = true;
+  countdown.countdown_s = 2.5;
+  harness.Show(idle);
+  harness.driver().Click("Start recording");
+  harness.Show(countdown);
+  harness.driver().WaitFrames(60);  // 1 s
+  EXPECT_FALSE(TooltipShown());
+  harness.driver().PointAt("Discard##take");    // the pointer goes elsewhere...
+  harness.driver().PointAt("Start recording");  // ...and comes back
+  harness.driver().WaitFrames(40);
+  EXPECT_TRUE(TooltipShown());
 }
 
 }  // namespace

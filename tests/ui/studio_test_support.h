@@ -120,6 +120,18 @@ inline StudioSnapshot SnapshotAt(Progress progress, teach::Step step) {
                       {TeleopMode::kKeyboard, true, ""},
                       {TeleopMode::kGamepad, false, "no gamepad connected"}};
   s.grip_m = {0.33f, 0.0f, 0.25f};
+  s.grip = {GripState::kOpen, "toast", 0.005f, 0.011f};
+  if (p >= 1) {
+    // The teacher's 3-D view: the same synthetic table, the gripper over the toast.
+    s.teacher_view.available = true;
+    s.teacher_view.image = SyntheticCamera();
+    s.teacher_view.frame = 1;
+    s.teacher_view.azimuth_deg = 90;
+    s.teacher_view.elevation_deg = -35;
+    s.teacher_view.distance_m = 1.3f;
+    s.teacher_view.grip_pixel = {49, 60};
+    s.teacher_view.spot_pixel = {49, 86};
+  }
   s.recent_sessions = {"/home/lab/sessions/toast", "/home/lab/sessions/cups"};
   if (p >= 4) {
     for (int i = 0; i < 4; ++i) {

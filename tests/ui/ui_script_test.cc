@@ -30,9 +30,10 @@ std::string ErrorOf(const std::string& script) {
 TEST(UiScriptTest, EveryCommandParsesWithItsArguments) {
   const std::vector<ScriptStep> steps = ParseUiScript(
       "# a comment\n\nclick Train Baseline and RECON\ntype 12\npress enter\nhold right 0.25\n"
-      "wait 3\nsleep 1.5\nwait-idle\nwait-idle 30\nscreenshot shots/01_cell.png\r\n",
+      "wait 3\nsleep 1.5\nwait-idle\nwait-idle 30\nscreenshot shots/01_cell.png\r\n"
+      "keyboard-take\nkeyboard-take 45\n",
       "s.script");
-  ASSERT_EQ(steps.size(), 9u);
+  ASSERT_EQ(steps.size(), 11u);
   EXPECT_EQ(steps[0].verb, ScriptStep::Verb::kClick);
   EXPECT_EQ(steps[0].text, "Train Baseline and RECON");
   EXPECT_EQ(steps[0].where, "s.script:3: ");
@@ -46,6 +47,9 @@ TEST(UiScriptTest, EveryCommandParsesWithItsArguments) {
   EXPECT_DOUBLE_EQ(steps[7].seconds, 30.0);
   EXPECT_EQ(steps[8].verb, ScriptStep::Verb::kScreenshot);
   EXPECT_EQ(steps[8].text, "shots/01_cell.png");  // the Windows line end is not part of it
+  EXPECT_EQ(steps[9].verb, ScriptStep::Verb::kKeyboardTake);
+  EXPECT_DOUBLE_EQ(steps[9].seconds, 90.0);
+  EXPECT_DOUBLE_EQ(steps[10].seconds, 45.0);
 }
 
 TEST(UiScriptTest, ABadLineIsFoundBeforeTheFirstRunsAndNamed) {
@@ -54,10 +58,28 @@ TEST(UiScriptTest, ABadLineIsFoundBeforeTheFirstRunsAndNamed) {
 }
 
 TEST(UiScriptTest, NumbersOutOfRangeOrMalformedAreRefused) {
-  for (const char* line :
-       {"wait -5", "wait 3abc", "wait 1.5", "wait 1e99", "wait", "wait nan", "wait 100001",
-        "sleep 0", "sleep -1", "sleep inf", "sleep 1e400", "sleep 3601", "hold right -2",
-        "hold right", "hold right 2s", "wait-idle 0", "wait-idle -3", "wait-idle soon"}) {
+  for (const char* line : {"wait -5",
+                           "wait 3abc",
+                           "wait 1.5",
+                           "wait 1e99",
+                           "wait",
+                           "wait nan",
+                           "wait 100001",
+                           "sleep 0",
+                           "sleep -1",
+                           "sleep inf",
+                           "sleep 1e400",
+                           "sleep 3601",
+                           "hold right -2",
+                           "hold right",
+                           "hold right 2s",
+                           "wait-idle 0",
+                           "wait-idle -3",
+                           "wait-idle soon",
+                           "keyboard-take 0",
+                           "keyboard-take -1",
+                           "keyboard-take nan",
+                           "keyboard-take 3601"}) {
     const std::string error = ErrorOf(std::string(line) + "\n");
     EXPECT_EQ(error.rfind("s.script:1: ", 0), 0u) << line << " -> '" << error << "'";
   }
@@ -86,9 +108,9 @@ TEST(UiScriptTest, AScreenshotCannotBeWrittenOutsideItsFolder) {
 TEST(UiScriptTest, RandomLinesParseInRangeOrAreRefusedNamingTheirLine) {
   constexpr uint32_t kSeed = 20261204;  // std::mt19937, so every CPU draws the same lines
   std::mt19937 rng(kSeed);
-  const std::vector<std::string> verbs = {"click", "type",         "press",      "hold", "wait",
-                                          "sleep", "wait-idle",    "screenshot", "Wait", "jump",
-                                          "",      "click\tTrain", "#click"};
+  const std::vector<std::string> verbs = {
+      "click",      "type", "press", "hold",          "wait", "sleep",        "wait-idle",
+      "screenshot", "Wait", "jump",  "keyboard-take", "",     "click\tTrain", "#click"};
   const std::vector<std::string> tokens = {"0",
                                            "-0",
                                            "1",
@@ -155,7 +177,8 @@ TEST(UiScriptTest, RandomLinesParseInRangeOrAreRefusedNamingTheirLine) {
       EXPECT_GE(step.frames, 0);
       EXPECT_LE(step.frames, kMaxScriptFrames);
       if (step.verb == ScriptStep::Verb::kHold || step.verb == ScriptStep::Verb::kSleep ||
-          step.verb == ScriptStep::Verb::kWaitIdle) {
+          step.verb == ScriptStep::Verb::kWaitIdle ||
+          step.verb == ScriptStep::Verb::kKeyboardTake) {
         EXPECT_GT(step.seconds, 0.0);
       }
       if (step.verb == ScriptStep::Verb::kPress || step.verb == ScriptStep::Verb::kHold) {

@@ -180,6 +180,12 @@ DesktopWindow::DesktopWindow(const Options& options) : events_(std::make_unique<
   try {
     UiRenderer::Options renderer_options = options.renderer;
     glfwGetFramebufferSize(window_, &renderer_options.width, &renderer_options.height);
+    if (options.ui_scale_from_screen) {
+      float x_scale = 1.0f, y_scale = 1.0f;
+      glfwGetWindowContentScale(window_, &x_scale, &y_scale);
+      const float screen = std::isfinite(y_scale) && y_scale > 0 ? y_scale : 1.0f;
+      renderer_options.ui_scale = std::clamp(screen, options.min_ui_scale, options.max_ui_scale);
+    }
     renderer_ = std::make_unique<UiRenderer>(renderer_options);
   } catch (...) {
     glfwDestroyWindow(window_);
@@ -246,6 +252,8 @@ FrameInput DesktopWindow::TakeInput(int window_width, int window_height, int fra
   e.pressed_mods = 0;
   return input;
 }
+
+float DesktopWindow::ui_scale() const { return renderer_->ui_scale(); }
 
 bool DesktopWindow::Frame(const std::function<void()>& draw) {
   if (glfwGetCurrentContext() != window_) glfwMakeContextCurrent(window_);

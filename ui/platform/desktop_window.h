@@ -34,6 +34,12 @@ class DesktopWindow {
     /// A cap on the frame rate: llvmpipe and Xvfb have no vertical sync, and an uncapped idle
     /// studio would take a core from training. Input wakes a waiting frame at once.
     double max_frames_per_second = 60.0;
+    /// Take the UI scale from the screen's content scale (the desktop's DPI setting: 2 on most
+    /// high-DPI desktops) instead of renderer.ui_scale, held within [min_ui_scale,
+    /// max_ui_scale].
+    bool ui_scale_from_screen = false;
+    float min_ui_scale = 0.75f;
+    float max_ui_scale = 3.0f;
   };
 
   /// Opens the window. Throws UserError naming why when there is no display or GLFW or the GL
@@ -59,6 +65,8 @@ class DesktopWindow {
   /// How the context was made, e.g. "EGL; OpenGL 4.5 (Compatibility Profile) Mesa 22.3.6,
   /// llvmpipe (LLVM 15.0.6, 256 bits)".
   const std::string& description() const { return description_; }
+  /// The scale everything is drawn at (renderer.ui_scale, or the screen's).
+  float ui_scale() const;
   /// Frames drawn so far.
   long frames() const { return frames_; }
 

@@ -41,6 +41,7 @@ class UiRenderer {
 
   int width() const { return options_.width; }
   int height() const { return options_.height; }
+  float ui_scale() const { return options_.ui_scale; }
   /// The GL renderer string, for the About box and logs.
   const std::string& gl_description() const { return gl_description_; }
 

@@ -5,6 +5,8 @@
 
 #include "ui/screens/screens.h"
 #include "ui/widgets/camera_view.h"
+#include "ui/widgets/height_gauge.h"
+#include "ui/widgets/orbit_view.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -14,37 +16,99 @@ namespace {
 // The live view's width at most; narrower windows get a narrower view, so the episode list keeps
 // its columns (from 1024 x 640 up).
 constexpr float kCameraWidth = 420.0f;
+// Beside the teacher's 3-D view the robot's camera is a thumbnail: the teacher steers by the
+// 3-D view, and sees here what the policy will see.
+constexpr float kThumbnailWidth = 112.0f;
 
 float CameraWidth() {
   return std::clamp(ImGui::GetContentRegionAvail().x * 0.45f, Px(240), Px(kCameraWidth));
+}
+
+float TeacherViewWidth() {
+  return std::clamp(ImGui::GetContentRegionAvail().x * 0.34f, Px(240), Px(480));
 }
 
 bool KeyDown(ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)); }
 bool KeyPressed(ImGuiKey key) { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), false); }
 
 /// The keyboard teleop: while a demonstration records, the arrows drive the arm as it moves on
-/// screen, Page Up / Page Down raise and lower it, Space opens or closes the gripper and Enter
-/// keeps the demonstration. Sends the controller a TeleopInput when the keys change.
+/// screen (in the 3-D view where there is one), Page Up / Page Down raise and lower it, Space opens
+/// or closes the gripper and Enter keeps the demonstration. Sends the controller a TeleopInput when
+/// the keys change.
 void ReadTeleopKeys(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
-  if (!s.recording || s.teleop != TeleopMode::kKeyboard || ImGui::GetIO().WantTextInput) return;
+  TeleopInput& sent = context.textures.teleop_sent;
+  if (!s.recording || s.teleop != TeleopMode::kKeyboard || ImGui::GetIO().WantTextInput) {
+    sent = {};  // the controller stops the arm between takes
+    return;
+  }
   TeleopInput input;
   input.screen_right =
       static_cast<float>(KeyDown(ImGuiKey_RightArrow) - KeyDown(ImGuiKey_LeftArrow));
   input.screen_up = static_cast<float>(KeyDown(ImGuiKey_UpArrow) - KeyDown(ImGuiKey_DownArrow));
   input.raise = static_cast<float>(KeyDown(ImGuiKey_PageUp) - KeyDown(ImGuiKey_PageDown));
-  input.close_gripper = s.teleop_input.close_gripper != KeyPressed(ImGuiKey_Space);
-  if (input != s.teleop_input) context.commands.Push(input);
+  if (input != sent) {
+    context.commands.Push(input);
+    sent = input;
+  }
+  if (KeyPressed(ImGuiKey_Space)) context.commands.Push(ToggleGripper{});
   if (KeyPressed(ImGuiKey_Enter) || KeyPressed(ImGuiKey_KeyPadEnter)) {
     context.commands.Push(StopRecording{});
   }
 }
 
-void DrawTeleopChoice(const ScreenContext& context, float width) {
-  const StudioSnapshot& s = context.snapshot;
-  ImGui::TextUnformatted("Teleop:");
+/// One row of the key legend: the key, and what it does.
+void LegendRow(const char* keys, const char* action) {
+  ImGui::TableNextRow();
+  ImGui::TableNextColumn();
+  ImGui::TextUnformatted(keys);
+  ImGui::TableNextColumn();
+  ImGui::TextDisabled("%s", action);
+}
+
+/// What each key or stick does in the chosen teleop, on screen while teaching.
+void DrawMappings(const StudioSnapshot& s) {
+  if (s.teleop == TeleopMode::kScripted) {
+    ImGui::TextDisabled("The scripted teacher demonstrates. Pick Keyboard or Gamepad to teach.");
+    return;
+  }
+  const char* seen =
+      s.teacher_view.available ? "as the 3-D view shows it" : "as the camera shows it";
+  if (!ImGui::BeginTable("mappings", 2, ImGuiTableFlags_SizingFixedFit)) return;
+  if (s.teleop == TeleopMode::kKeyboard) {
+    LegendRow("Arrows", Format("move the arm %s", seen).c_str());
+    LegendRow("Page Up / Down", "raise / lower it");
+    LegendRow("Space", "close / open the gripper");
+    LegendRow("Enter", "keep the take");
+  } else {
+    LegendRow("Left stick", Format("move the arm %s", seen).c_str());
+    LegendRow("Right stick", "raise / lower it");
+    LegendRow("A", "close / open the gripper");
+    LegendRow("Start", "keep the take");
+  }
+  LegendRow("F12", "emergency stop");
+  ImGui::EndTable();
+}
+
+/// How wide the teleop row is with every choice marked: the same whichever is chosen.
+float TeleopRowWidth(const StudioSnapshot& s) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  float width = 0;
   for (const TeleopChoice& choice : s.teleop_choices) {
-    ImGui::SameLine();
+    width += (width > 0 ? style.ItemSpacing.x : 0) +
+             ImGui::CalcTextSize((std::string("[x] ") + TeleopModeLabel(choice.mode)).c_str()).x +
+             2 * style.FramePadding.x;
+  }
+  return width;
+}
+
+void DrawTeleopChoice(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  ImGui::TextUnformatted("Who drives the arm in the next take:");
+  bool first = true;
+  for (const TeleopChoice& choice : s.teleop_choices) {
+    if (!first) ImGui::SameLine();
+    first = false;
     const bool enabled = choice.available && !s.recording;
     const std::string label =
         (choice.mode == s.teleop ? "[x] " : "[ ] ") + std::string(TeleopModeLabel(choice.mode));
@@ -53,21 +117,132 @@ void DrawTeleopChoice(const ScreenContext& context, float width) {
       context.commands.Push(SetTeleopMode{choice.mode});
     }
   }
-  const char* help = s.teleop == TeleopMode::kKeyboard
-                         ? "Arrows move the arm as on screen, Page Up/Down raise and lower it, "
-                           "Space opens or closes the gripper, Enter keeps the demonstration."
-                     : s.teleop == TeleopMode::kGamepad
-                         ? "The left stick moves the arm as on screen, the right stick raises "
-                           "and lowers it, A opens or closes the gripper, Start keeps the "
-                           "demonstration."
-                         : nullptr;
-  if (help != nullptr) {
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s", help);
-    ImGui::PopStyleColor();
-    ImGui::PopTextWrapPos();
+  DrawMappings(s);
+}
+
+/// What the gripper does with the object, in words and colour: whether a grasp worked is the
+/// first thing a teacher needs to know, and a closed gripper says nothing of it.
+void DrawGripState(const StudioSnapshot& s) {
+  const std::string object = s.grip.object.empty() ? "the object" : "the " + s.grip.object;
+  switch (s.grip.state) {
+    case GripState::kHolding:
+      StatusText(Status::kOk, "Holding " + object);
+      break;
+    case GripState::kClosedOnNothing:
+      StatusText(Status::kError, "Closed on nothing: open (Space), line up and try again");
+      break;
+    case GripState::kClosing:
+      StatusText(Status::kBusy, "Closing...");
+      break;
+    case GripState::kOpen:
+      StatusText(Status::kOff, "Gripper open");
+      break;
+    case GripState::kUnknown:
+      StatusText(Status::kOff, s.gripper_closed ? "Gripper closed" : "Gripper open");
+      break;
   }
+  // Three lines whatever the state, so what is drawn under them never moves.
+  if (s.grip.grasp_max_m > s.grip.grasp_min_m) {
+    const float height = s.grip_m[2];
+    const float above = height - s.grip.grasp_max_m;
+    ImGui::Text("Height %.1f cm; it grasps %s at %.1f-%.1f cm", 100 * height, object.c_str(),
+                100 * s.grip.grasp_min_m, 100 * s.grip.grasp_max_m);
+    if (s.grip.state == GripState::kOpen && above > 0 && above < 0.05f) {
+      ImGui::TextDisabled("lower %.1f cm more before closing", 100 * above);
+    } else if (s.grip.state == GripState::kOpen && above <= 0) {
+      StatusText(Status::kOk, "Low enough: close the gripper");
+    } else {
+      ImGui::TextUnformatted("");
+    }
+  } else {
+    ImGui::Text("Height %.1f cm", 100 * s.grip_m[2]);
+    ImGui::TextUnformatted("");
+  }
+}
+
+/// The teacher's 3-D view with the robot's camera and the height gauge beside it, its preset
+/// views under it, and the grip's readout.
+void DrawTeacherView(const ScreenContext& context, float width) {
+  const StudioSnapshot& s = context.snapshot;
+  context.textures.teacher_view.Update(s.teacher_view.image, s.teacher_view.frame);
+  ImGui::BeginGroup();
+  if (auto moved =
+          OrbitView("teacher-view", context.textures.teacher_view, width, s.teacher_view)) {
+    context.commands.Push(*moved);
+  }
+  if (auto preset = OrbitPresets(s.teacher_view, width)) context.commands.Push(*preset);
+  ImGui::EndGroup();
+  ImGui::SameLine();
+  ImGui::BeginGroup();
+  ImGui::TextDisabled("Robot's camera");
+  // No beacon labels on a thumbnail: they would cover it (the Beacons screen shows them).
+  CameraView("camera##record", context.textures.camera, Px(kThumbnailWidth), {}, {});
+  HeightGauge("height-gauge", s.grip_m[2], s.grip.grasp_min_m, s.grip.grasp_max_m,
+              std::max(Px(90), 0.75f * width - Px(kThumbnailWidth) * 0.75f - Px(64)));
+  ImGui::EndGroup();
+  DrawGripState(s);
+}
+
+/// The take's buttons and what the take is doing, in a block of one size whatever the take's
+/// state, each button always in its place (enabled when it applies): a click aimed at one as a
+/// take starts or ends never lands on another, and the episode list below never moves.
+void DrawTakeControls(const ScreenContext& context, bool blocked, const std::string& why) {
+  const StudioSnapshot& s = context.snapshot;
+  const bool pending = !s.pending_take.empty();
+  const bool counting = s.recording && s.countdown_s > 0;
+  const float width = std::min(Px(520), ImGui::GetContentRegionAvail().x);
+  ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0, 0, 0, 0));
+  ImGui::BeginChild("take-controls", ImVec2(width, Px(126)), false,
+                    ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  const bool take = s.recording || pending;
+  if (Button("Start recording", !take && !blocked, take ? "finish the take first" : why)) {
+    context.commands.Push(StartRecording{});
+  }
+  ImGui::SameLine();
+  // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked. One
+  // width for both labels, so Discard stays where it is.
+  const float keep_width =
+      ImGui::CalcTextSize("Keep as not done").x + 2 * ImGui::GetStyle().FramePadding.x;
+  if (Button(pending ? "Keep as not done##take" : "Stop and keep##take",
+             pending || (s.recording && !counting),
+             counting ? "the take has not started" : "no take is running", keep_width)) {
+    context.commands.Push(StopRecording{});
+  }
+  // Discard goes under the others where the column is too narrow for the three (a window's
+  // size, not the take's state, decides).
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float row = ImGui::CalcTextSize("Start recording").x + keep_width +
+                    ImGui::CalcTextSize("Discard").x + 4 * style.FramePadding.x +
+                    2 * style.ItemSpacing.x;
+  if (row <= width) ImGui::SameLine();
+  if (Button("Discard##take", take, "no take is running")) {
+    context.commands.Push(DiscardRecording{});
+  }
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+  if (pending) {
+    StatusText(Status::kWarning, s.pending_take + ".");
+  } else if (counting) {
+    StatusText(Status::kBusy,
+               Format("Get ready: the take starts in %.0f s", std::ceil(s.countdown_s)));
+  } else if (s.recording) {
+    // The time limit in view, and a warning before it ends the take.
+    const double elapsed = s.recording_samples * s.recording_step_s;
+    const double limit = s.recording_max_samples * s.recording_step_s;
+    StatusText(Status::kBusy, Format("Recording: %d samples, %.1f s of %.0f s", s.recording_samples,
+                                     elapsed, limit));
+    ImGui::ProgressBar(limit > 0 ? static_cast<float>(elapsed / limit) : 0.0f, ImVec2(width, 0),
+                       "");
+    if (s.teleop != TeleopMode::kScripted && limit > 0 && limit - elapsed <= 5.0) {
+      StatusText(Status::kWarning,
+                 Format("%.0f s left: the take ends at %.0f s (then keep or discard it)",
+                        std::max(0.0, limit - elapsed), limit));
+    }
+  } else if (blocked && !why.empty()) {
+    ImGui::TextWrapped("%s", why.c_str());
+  }
+  ImGui::PopTextWrapPos();
+  ImGui::EndChild();
+  ImGui::PopStyleColor();
 }
 
 }  // namespace
@@ -79,51 +254,31 @@ void DrawRecordScreen(const ScreenContext& context) {
   const std::string why = WhyMotionBlocked(s, teach::Step::kRecord);
   ReadTeleopKeys(context);
   context.textures.camera.Update(s.camera, s.camera_frame);
+  const float start_x = ImGui::GetCursorPosX();
   ImGui::BeginGroup();
-  const float camera_width = CameraWidth();
-  CameraView("camera##record", context.textures.camera, camera_width, s.beacons, {});
-  DrawTeleopChoice(context, camera_width);
-  ImGui::Text("Grip at (%.2f, %.2f, %.2f) m, gripper %s", s.grip_m[0], s.grip_m[1], s.grip_m[2],
-              s.gripper_closed ? "closed" : "open");
+  float left_width = 0;
+  if (s.teacher_view.available) {
+    const float view_width = TeacherViewWidth();
+    left_width = view_width + Px(kThumbnailWidth + 16);
+    DrawTeacherView(context, view_width);
+  } else {
+    left_width = CameraWidth();
+    CameraView("camera##record", context.textures.camera, left_width, s.beacons, {});
+    DrawGripState(s);
+  }
+  left_width = std::max(left_width, TeleopRowWidth(s));
+  ImGui::PushTextWrapPos(start_x + left_width);
+  DrawTeleopChoice(context);
   // The parts, so 4.6 s before the first take reads as what it is (placing the beacons).
   ImGui::Text("Teacher's time so far: %.1f s", s.teacher_seconds);
   ImGui::TextDisabled("demonstrations %.1f s, play %.1f s, placing beacons %.1f s",
                       s.teacher_demo_seconds, s.teacher_play_seconds, s.teacher_placement_seconds);
+  ImGui::PopTextWrapPos();
   ImGui::EndGroup();
-  ImGui::SameLine();
+  // The right side starts at one place whatever the left side shows (a teleop chosen, a take).
+  ImGui::SameLine(start_x + left_width + ImGui::GetStyle().ItemSpacing.x);
   ImGui::BeginGroup();
-  if (!s.pending_take.empty()) {
-    // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked.
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + Px(520));
-    StatusText(Status::kWarning, s.pending_take + ".");
-    ImGui::PopTextWrapPos();
-    if (Button("Keep as not done")) context.commands.Push(StopRecording{});
-    ImGui::SameLine();
-    if (Button("Discard##pending")) context.commands.Push(DiscardRecording{});
-  } else if (s.recording && s.countdown_s > 0) {
-    StatusText(Status::kBusy,
-               Format("Get ready: the take starts in %.0f s", std::ceil(s.countdown_s)));
-    if (Button("Discard")) context.commands.Push(DiscardRecording{});
-  } else if (s.recording) {
-    // The time limit in view, and a warning before it ends the take.
-    const double elapsed = s.recording_samples * s.recording_step_s;
-    const double limit = s.recording_max_samples * s.recording_step_s;
-    StatusText(Status::kBusy, Format("Recording: %d samples, %.1f s of %.0f s", s.recording_samples,
-                                     elapsed, limit));
-    ImGui::ProgressBar(limit > 0 ? static_cast<float>(elapsed / limit) : 0.0f, ImVec2(Px(520), 0),
-                       "");
-    if (s.teleop != TeleopMode::kScripted && limit > 0 && limit - elapsed <= 5.0) {
-      StatusText(Status::kWarning,
-                 Format("%.0f s left: the take ends at %.0f s (then keep or discard it)",
-                        std::max(0.0, limit - elapsed), limit));
-    }
-    if (Button("Stop and keep")) context.commands.Push(StopRecording{});
-    ImGui::SameLine();
-    if (Button("Discard")) context.commands.Push(DiscardRecording{});
-  } else if (Button("Start recording", !blocked, why)) {
-    context.commands.Push(StartRecording{});
-  }
-  if (blocked && !why.empty()) ImGui::TextWrapped("%s", why.c_str());
+  DrawTakeControls(context, blocked, why);
   ImGui::Spacing();
   ImGui::Text("Demonstrations (%zu)", s.episodes.size());
   if (!s.undo_delete.empty()) {
@@ -137,12 +292,12 @@ void DrawRecordScreen(const ScreenContext& context) {
                         ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                             ImGuiTableFlags_ScrollX,
                         ImVec2(0, Px(320)))) {
-    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, Px(120));
-    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, Px(64));
-    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(60));
-    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(40));
+    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, Px(104));
+    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, Px(62));
+    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(52));
+    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(42));
     // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(240));
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(226));
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());

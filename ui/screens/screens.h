@@ -8,11 +8,16 @@
 
 namespace recon::ui {
 
-/// GL textures the screens draw with, and what the teacher is typing; owned by the UI thread for
-/// the window's life (per window, so two studios in one process never share a text field).
+/// GL textures the screens draw with, and what the teacher is typing and keying; owned by the UI
+/// thread for the window's life (per window, so two studios in one process never share a text
+/// field).
 struct StudioTextures {
   std::array<char, 1024> session_folder{};  ///< the session picker's folder field
+  /// The teleop input the Record screen last sent: keys are compared with it, not with the
+  /// snapshot's (which lags the commands), so a tap shorter than a round trip still stops.
+  TeleopInput teleop_sent;
   ImageTexture camera;
+  ImageTexture teacher_view;  ///< the Record screen's 3-D view
   ImageTexture play;
   ImageTexture rollout;
   ImageTexture rollout_other;  ///< the second method's frame, side by side

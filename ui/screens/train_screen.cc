@@ -57,6 +57,11 @@ void DrawTrainScreen(const ScreenContext& context) {
                     WhyBlocked(s, teach::Step::kTrain))) {
     context.commands.Push(StartTraining{{"baseline", "recon"}});
   }
+  if (!s.teacher_mix_warning.empty()) {
+    ImGui::PushTextWrapPos(ImGui::GetContentRegionAvail().x);
+    StatusText(Status::kWarning, s.teacher_mix_warning);
+    ImGui::PopTextWrapPos();
+  }
   ImGui::Spacing();
   // Side by side, as the paper compares them.
   const float width = (ImGui::GetContentRegionAvail().x - Px(20)) / 2;

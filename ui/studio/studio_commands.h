@@ -68,20 +68,29 @@ struct DismissErrors {};
 struct SetTeleopMode {
   TeleopMode mode = TeleopMode::kScripted;
 };
-/// What the teacher's keys (or sticks) ask for now, relative to the camera view as they see it:
-/// each axis -1..1. The controller turns it into a velocity of the grip point in the table frame.
+/// What the teacher's keys (or sticks) ask for now, relative to the view as they see it: each
+/// axis -1..1. The controller turns it into a velocity of the grip point in the table frame.
 struct TeleopInput {
   float screen_right = 0;  ///< + moves the arm towards the view's right edge
-  float screen_up = 0;     ///< + moves it towards the view's top edge
+  float screen_up = 0;     ///< + moves it towards the view's top edge (away)
   float raise = 0;         ///< + lifts the tool, - lowers it
-  bool close_gripper = false;
   bool operator==(const TeleopInput& o) const {
-    return screen_right == o.screen_right && screen_up == o.screen_up && raise == o.raise &&
-           close_gripper == o.close_gripper;
+    return screen_right == o.screen_right && screen_up == o.screen_up && raise == o.raise;
   }
   bool operator!=(const TeleopInput& o) const { return !(*this == o); }
 };
+/// Closes an open gripper or opens a closed one (Space, the gamepad's A) in a person's take. A
+/// command of its own, not a field of TeleopInput: a state sent with the keys would be the
+/// snapshot's, which lags the commands, and a key pressed just after Space undid it.
+struct ToggleGripper {};
 struct StopPlay {};
+/// Where the teacher's 3-D view looks from (the Record screen's orbit and zoom); the cell keeps
+/// it within worlds::OrbitCamera's limits.
+struct SetTeacherView {
+  float azimuth_deg = 0;
+  float elevation_deg = -45;
+  float distance_m = 1.3;
+};
 /// Plays the rollouts back (advancing ShowRolloutFrame's frame at the control rate) or pauses.
 struct PlayRollouts {
   bool playing = true;
@@ -94,9 +103,9 @@ struct ShowSessionPicker {
 struct OpenSession {
   std::string dir;
 };
-/// The e-stop (the status bar's button, or Escape): engaging it stops the arm at once, ends a
-/// demonstration or play recording without keeping it, and refuses everything that would move the
-/// arm until it is released.
+/// The e-stop (the status bar's button, or F12): engaging it stops the arm at once, ends a
+/// demonstration (set aside for the teacher to keep or discard) or a play recording, and refuses
+/// everything that would move the arm until it is released.
 struct EmergencyStop {
   bool engage = true;
   std::string reason = "e-stop pressed";
@@ -110,7 +119,7 @@ using StudioCommand =
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
-                 UndoDelete, OpenReport>;
+                 UndoDelete, OpenReport, SetTeacherView, ToggleGripper>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

@@ -65,6 +65,36 @@ struct BeaconView {
   double noise_m = 0;           ///< measured spread of the readings per axis (the last 3 s)
 };
 
+/// What the gripper does with what it should pick up, as the Record screen's readout says it.
+enum class GripState {
+  kUnknown,          ///< the cell cannot tell (a real gripper without object detection)
+  kOpen,             ///< open
+  kClosing,          ///< the fingers are on their way in
+  kHolding,          ///< holding the object (GripView::object)
+  kClosedOnNothing,  ///< the fingers shut without the object between them
+};
+
+/// The arm's grip as a teacher needs it to grasp: where it is, how high, and what it holds.
+struct GripView {
+  GripState state = GripState::kUnknown;
+  std::string object;  ///< what the task picks up ("toast"); empty when the cell does not say
+  /// The grip point's heights above the table at which closing holds the object (both 0 when
+  /// the cell does not know).
+  float grasp_min_m = 0, grasp_max_m = 0;
+};
+
+/// The teacher's 3-D view of the cell: a camera they orbit and zoom (the simulated cell's free
+/// camera), with the grip's drop line and shadow drawn in. Unavailable on a real cell.
+struct TeacherView {
+  bool available = false;
+  RgbImage image;
+  uint64_t frame = 0;  ///< grows with every new image
+  float azimuth_deg = 0, elevation_deg = 0, distance_m = 0;
+  /// Where the view shows the grip point, and the spot under it where the drop line lands (on
+  /// the toast, the plate or the table), in image pixels.
+  std::array<float, 2> grip_pixel{}, spot_pixel{};
+};
+
 /// A teleop the Record screen offers, and whether it can be used now.
 struct TeleopChoice {
   TeleopMode mode = TeleopMode::kScripted;
@@ -180,11 +210,15 @@ struct StudioSnapshot {
   std::string undo_delete;  ///< the episode "Undo delete" brings back; "" when there is none
   TeleopMode teleop = TeleopMode::kScripted;
   std::vector<TeleopChoice> teleop_choices;
-  TeleopInput teleop_input;       ///< what the keys ask for now (the Record screen sends changes)
-  std::array<float, 3> grip_m{};  ///< the arm's grip point in the table frame
+  TeleopInput teleop_input;           ///< what the controller drives the arm by now (keys, sticks)
+  std::array<float, 3> grip_m{};      ///< the arm's grip point in the table frame
   std::array<float, 2> grip_pixel{};  ///< and where the camera view shows it
   bool gripper_closed = false;
+  GripView grip;
+  TeacherView teacher_view;
   std::vector<EpisodeView> episodes;
+  /// Said when the good demonstrations come from more than one teleop (teach::TeacherMixWarning).
+  std::string teacher_mix_warning;
   double teacher_seconds = 0;  ///< demonstrations + play + beacon placements so far
   /// Its parts (the session's teaching ledger): a beacon's placement counts before any take.
   double teacher_demo_seconds = 0, teacher_play_seconds = 0, teacher_placement_seconds = 0;

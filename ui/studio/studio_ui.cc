@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <cfloat>
+
 #include "ui/platform/frame_input.h"
 #include "ui/widgets/widgets.h"
 
@@ -68,6 +70,26 @@ void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
 
 }  // namespace
 
+/// The errors shown until dismissed, in a panel over the bottom of the screen (its lower-left
+/// corner at `bottom_left`, `width` wide) rather than above it: an error arriving while the
+/// teacher works pushes nothing down under the pointer.
+void DrawErrors(const StudioSnapshot& snapshot, CommandQueue& commands, ImVec2 bottom_left,
+                float width) {
+  if (snapshot.errors.empty()) return;
+  ImGui::SetNextWindowPos(bottom_left, ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0), ImVec2(width, FLT_MAX));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(1.0f, 0.93f, 0.92f, 1.0f));
+  ImGui::Begin("Errors", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushTextWrapPos(width - Px(16));
+  for (const std::string& error : snapshot.errors) StatusText(Status::kError, error);
+  ImGui::PopTextWrapPos();
+  if (Button("Dismiss")) commands.Push(DismissErrors{});
+  ImGui::End();
+  ImGui::PopStyleColor();
+}
+
 void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTextures& textures) {
   // While a demonstration records, the arrows and Space drive the arm: they must not also move
   // ImGui's keyboard focus and press whatever button it lands on (from the next frame on).
@@ -102,13 +124,10 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::SetNextWindowPos(ImVec2(Px(kSidebarWidth), top));
   ImGui::SetNextWindowSize(ImVec2(display.x - Px(kSidebarWidth), body));
   ImGui::Begin("Screen", nullptr, kPanel);
-  if (!snapshot.errors.empty()) {
-    for (const std::string& error : snapshot.errors) StatusText(Status::kError, error);
-    if (Button("Dismiss")) commands.Push(DismissErrors{});
-    ImGui::Separator();
-  }
   DrawScreen(context);
   ImGui::End();
+  DrawErrors(snapshot, commands, ImVec2(Px(kSidebarWidth), top + body),
+             display.x - Px(kSidebarWidth));
 
   ImGui::SetNextWindowPos(ImVec2(0, top + body));
   ImGui::SetNextWindowSize(ImVec2(display.x, Px(kStatusHeight)));

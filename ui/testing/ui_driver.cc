@@ -50,17 +50,48 @@ void UiDriver::Hover(float x, float y, bool down) {
   Frame(input);
 }
 
-void UiDriver::Click(const std::string& label) {
+WidgetRect UiDriver::Locate(const std::string& label, bool enabled_only) {
   if (!Drawn(label)) Frame();  // the widget may appear only once the frame has been drawn
   const std::optional<WidgetRect> rect = WidgetRegistry::ForThisThread().Find(label);
   if (!rect) {
     throw UserError("no widget labelled '" + label +
                     "' on screen; drawn: " + Join(WidgetRegistry::ForThisThread().Labels()));
   }
-  if (!rect->enabled) throw UserError("the widget '" + label + "' is disabled");
-  Hover(rect->CentreX(), rect->CentreY(), false);
-  Hover(rect->CentreX(), rect->CentreY(), true);
-  Hover(rect->CentreX(), rect->CentreY(), false);
+  if (enabled_only && !rect->enabled) throw UserError("the widget '" + label + "' is disabled");
+  return *rect;
+}
+
+void UiDriver::PointAt(const std::string& label) {
+  const WidgetRect rect = Locate(label, false);
+  Hover(rect.CentreX(), rect.CentreY(), false);
+}
+
+void UiDriver::Drag(const std::string& label, float dx, float dy) {
+  const WidgetRect rect = Locate(label);
+  const float x = rect.CentreX(), y = rect.CentreY();
+  Hover(x, y, false);
+  Hover(x, y, true);
+  constexpr int kSteps = 5;
+  for (int i = 1; i <= kSteps; ++i) Hover(x + dx * i / kSteps, y + dy * i / kSteps, true);
+  Hover(x + dx, y + dy, false);
+}
+
+void UiDriver::Scroll(const std::string& label, float notches) {
+  const WidgetRect rect = Locate(label);
+  Hover(rect.CentreX(), rect.CentreY(), false);
+  FrameInput input;
+  input.mouse_x = mouse_x_;
+  input.mouse_y = mouse_y_;
+  input.wheel = notches;
+  Frame(input);
+  WaitFrames(1);
+}
+
+void UiDriver::Click(const std::string& label) {
+  const WidgetRect rect = Locate(label);
+  Hover(rect.CentreX(), rect.CentreY(), false);
+  Hover(rect.CentreX(), rect.CentreY(), true);
+  Hover(rect.CentreX(), rect.CentreY(), false);
   if (settled_) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (!settled_()) {
@@ -109,6 +140,36 @@ void UiDriver::Hold(int imgui_key, double seconds) {
     }
     WaitFrames(2);
   }
+}
+
+KeyboardPerson UiDriver::KeyboardTake(double timeout_s) {
+  if (!snapshot_) throw UserError("keyboard-take needs the screen's snapshot (none was set)");
+  WaitFrames(2);
+  const StudioSnapshot first = snapshot_();
+  if (!first.recording || first.teleop != TeleopMode::kKeyboard) {
+    throw UserError(
+        "keyboard-take: no keyboard take is running (choose Keyboard and click Start "
+        "recording first)");
+  }
+  KeyboardPerson person;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (person.phase() != KeyboardPerson::Phase::kFinished) {
+    if (person.phase() == KeyboardPerson::Phase::kLost) {
+      throw UserError("keyboard-take: the scripted person gave up: " + person.Describe());
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw UserError("keyboard-take: the take still runs after " +
+                      std::to_string(static_cast<int>(timeout_s)) + " s; " + person.Describe());
+    }
+    FrameInput keys = person.Next(snapshot_());
+    keys.mouse_x = mouse_x_;
+    keys.mouse_y = mouse_y_;
+    Frame(keys);
+    // A person looks about 50 times a second at most; the arm moves 10 times a second.
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  WaitFrames(3);  // release the keys and show what became of the take
+  return person;
 }
 
 void UiDriver::WaitIdle(double timeout_s) {
@@ -170,6 +231,9 @@ void UiDriver::RunStep(const ScriptStep& step) {
     }
     case ScriptStep::Verb::kWaitIdle:
       WaitIdle(step.seconds);
+      break;
+    case ScriptStep::Verb::kKeyboardTake:
+      KeyboardTake(step.seconds);
       break;
     case ScriptStep::Verb::kScreenshot:
       // ParseUiScript keeps the name relative and inside the folder.

@@ -6,7 +6,10 @@
 
 #include "engine/core/image.h"
 #include "ui/platform/headless_window.h"
+#include "ui/studio/studio_snapshot.h"
+#include "ui/testing/keyboard_person.h"
 #include "ui/testing/ui_script.h"
+#include "ui/widgets/widget_registry.h"
 
 namespace recon::ui {
 
@@ -25,6 +28,15 @@ class UiDriver {
   /// Throws UserError if no such widget was drawn, naming the labels that were, or if it is
   /// disabled.
   void Click(const std::string& label);
+  /// Moves the pointer onto the widget labelled `label`, enabled or not, without pressing: what a
+  /// person does to read why a control is disabled. UserError if no such widget was drawn.
+  void PointAt(const std::string& label);
+  /// Presses the left button on the widget labelled `label`, moves the pointer by (dx, dy)
+  /// pixels over a few frames and lets go: a drag. UserError as Click.
+  void Drag(const std::string& label, float dx, float dy);
+  /// Turns the mouse wheel by `notches` (positive: away from the user) over the widget labelled
+  /// `label`. UserError as Click.
+  void Scroll(const std::string& label, float notches);
   /// Types text into the focused widget.
   void Type(const std::string& text);
   /// Presses and releases a key (an ImGuiKey value).
@@ -45,6 +57,13 @@ class UiDriver {
   void SetQuitCheck(std::function<bool()> quit) { quit_ = std::move(quit); }
   /// What `wait-idle` waits for (e.g. "the studio's controller has nothing running").
   void SetIdleCheck(std::function<bool()> idle) { idle_ = std::move(idle); }
+  /// What the screens show now (the application's latest snapshot), for the scripted person.
+  void SetSnapshotSource(std::function<StudioSnapshot()> source) { snapshot_ = std::move(source); }
+  /// Gives the keyboard take that has just been started (on the Record screen, Keyboard chosen)
+  /// as KeyboardPerson would, one frame of keys at a time, until the take ends. UserError when
+  /// no take runs, the person loses track, or it takes longer than `timeout_s`. Returns the
+  /// person, to ask how it went.
+  KeyboardPerson KeyboardTake(double timeout_s);
   /// Runs frames until the idle check holds; UserError after `timeout_s` seconds.
   void WaitIdle(double timeout_s);
   /// Where `screenshot` writes relative paths (default: the working directory).
@@ -53,13 +72,15 @@ class UiDriver {
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
   /// (enter, tab, escape, backspace, space, up, down, left, right, pageup, pagedown),
   /// `hold <key> <seconds>`, `wait <frames>`, `sleep <seconds>` (frames for that wall time),
-  /// `wait-idle [seconds]`, `screenshot <file.png>` (inside the screenshot folder); `#` starts
-  /// a comment. The whole script is checked before its first line runs (ParseUiScript); every
-  /// error names the script and line.
+  /// `wait-idle [seconds]`, `keyboard-take [seconds]`, `screenshot <file.png>` (inside the
+  /// screenshot folder); `#` starts a comment. The whole script is checked before its first line
+  /// runs (ParseUiScript); every error names the script and line.
   void RunScript(const std::string& script, const std::string& source_name = "script");
 
  private:
   void RunStep(const ScriptStep& step);
+  /// Where the widget labelled `label` was drawn; UserError when it was not or is disabled.
+  WidgetRect Locate(const std::string& label, bool enabled_only = true);
   void Hover(float x, float y, bool down);
 
   HeadlessWindow& window_;
@@ -69,6 +90,7 @@ class UiDriver {
   std::function<bool()> idle_;
   std::function<bool()> settled_;
   std::function<bool()> quit_;
+  std::function<StudioSnapshot()> snapshot_;
   std::string screenshot_dir_;
 };
 

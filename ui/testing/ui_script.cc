@@ -16,7 +16,8 @@ namespace recon::ui {
 
 namespace {
 
-constexpr const char* kVerbs = "click, type, press, hold, wait, sleep, wait-idle, screenshot";
+constexpr const char* kVerbs =
+    "click, type, press, hold, wait, sleep, wait-idle, keyboard-take, screenshot";
 
 // A number of a script line, checked as a command-line option's is (engine/core/number_check).
 double ParseNumber(const std::string& text, const std::string& what, double lo, double hi,
@@ -92,6 +93,11 @@ ScriptStep ParseStep(const std::string& verb, const std::string& argument) {
   } else if (verb == "wait-idle") {
     step.verb = ScriptStep::Verb::kWaitIdle;
     step.seconds = argument.empty() ? 600.0 : ParseSeconds(argument, "wait-idle");
+  } else if (verb == "keyboard-take") {
+    // keyboard-take [seconds]: the scripted person (KeyboardPerson) gives the keyboard take that
+    // has just been started, from what the Record screen shows.
+    step.verb = ScriptStep::Verb::kKeyboardTake;
+    step.seconds = argument.empty() ? 90.0 : ParseSeconds(argument, "keyboard-take");
   } else if (verb == "screenshot") {
     step.verb = ScriptStep::Verb::kScreenshot;
     step.text = CheckScreenshotName(argument);

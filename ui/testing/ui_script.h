@@ -11,7 +11,17 @@
 namespace recon::ui {
 
 struct ScriptStep {
-  enum class Verb { kClick, kType, kPress, kHold, kWait, kSleep, kWaitIdle, kScreenshot };
+  enum class Verb {
+    kClick,
+    kType,
+    kPress,
+    kHold,
+    kWait,
+    kSleep,
+    kWaitIdle,
+    kKeyboardTake,
+    kScreenshot
+  };
   Verb verb = Verb::kWait;
   /// "file:line: ", the prefix of every error this step raises while it runs.
   std::string where;
@@ -19,11 +29,12 @@ struct ScriptStep {
   /// screenshot folder.
   std::string text;
   int key = -1;        ///< press, hold: an ImGuiKey value
-  double seconds = 0;  ///< hold, sleep, wait-idle
+  double seconds = 0;  ///< hold, sleep, wait-idle, keyboard-take
   int frames = 0;      ///< wait
 };
 
-/// The longest hold, sleep or wait-idle a script may ask for, and the most frames a wait may.
+/// The longest hold, sleep, wait-idle or keyboard-take a script may ask for, and the most frames a
+/// wait may.
 inline constexpr double kMaxScriptSeconds = 3600.0;
 inline constexpr int kMaxScriptFrames = 100000;
 

@@ -31,15 +31,40 @@ ImU32 StatusColour(Status status) {
 
 float Px(float px) { return px * ImGui::GetFontSize() / 16.0f; }
 
-bool Button(const char* label, bool enabled, const std::string& why_disabled) {
+namespace {
+
+/// Why the last item (`id`, disabled) cannot be used, as a tooltip once the pointer has been
+/// moved onto it and rested a moment. Not for a pointer that stayed where it clicked: a button
+/// turns disabled under it (Start recording while the take counts down), and a tooltip then
+/// would cover what the click brought up.
+void ShowWhyDisabled(ImGuiID id, const std::string& why_disabled) {
+  constexpr float kDelay_s = 0.4f;
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  if (why_disabled.empty() || !ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    storage->SetFloat(id, -1.0f);
+    return;
+  }
+  const ImVec2 moved = ImGui::GetIO().MouseDelta;
+  const float now = static_cast<float>(ImGui::GetTime());
+  float since = storage->GetFloat(id, -1.0f);
+  if (since < 0) {
+    if (moved.x == 0 && moved.y == 0) return;
+    since = now;
+    storage->SetFloat(id, since);
+  }
+  if (now - since >= kDelay_s) ImGui::SetTooltip("%s", why_disabled.c_str());
+}
+
+}  // namespace
+
+bool Button(const char* label, bool enabled, const std::string& why_disabled, float width) {
   if (!enabled) ImGui::BeginDisabled();
-  const bool clicked = ImGui::Button(label);
+  const ImGuiID id = ImGui::GetID(label);
+  const bool clicked = ImGui::Button(label, ImVec2(width, 0));
   WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
   if (!enabled) {
     ImGui::EndDisabled();
-    if (!why_disabled.empty() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-      ImGui::SetTooltip("%s", why_disabled.c_str());
-    }
+    ShowWhyDisabled(id, why_disabled);
   }
   return clicked && enabled;
 }

@@ -12,7 +12,9 @@ namespace recon::ui {
 
 /// A button; when !enabled it is drawn greyed out, does nothing, and shows `why_disabled` on
 /// hover. Returns true when clicked.
-bool Button(const char* label, bool enabled = true, const std::string& why_disabled = "");
+/// `width`: 0 fits the label; a fixed width keeps what follows in place when the label changes.
+bool Button(const char* label, bool enabled = true, const std::string& why_disabled = "",
+            float width = 0);
 /// A selectable row (a list entry, a step in the sidebar).
 bool Selectable(const char* label, bool selected, bool enabled = true);
 /// A menu of the menu bar (true while open: draw its items, then ImGui::EndMenu) and its items.
