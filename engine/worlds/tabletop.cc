@@ -10,9 +10,13 @@
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
 #include "engine/worlds/scene_assets.h"
+#include "engine/worlds/tabletop_waypoints.h"
 #include "engine/worlds/tag_textures.h"
 
 namespace recon::worlds {
+
+// The expert's heights, which the reachability check and DemonstrationDone share with it.
+using namespace tabletop_waypoints;  // NOLINT(build/namespaces)
 
 namespace {
 
@@ -32,37 +36,7 @@ constexpr double kToastX = 0.33, kToastJitter = 0.0;
 constexpr double kToastRestZ = 0.008;
 constexpr double kBowlMinX = 0.22, kBowlMaxX = 0.82, kBowlMaxAbsY = 0.5;
 constexpr double kBowlClearPlate = 0.22, kBowlClearToast = 0.16, kBowlClearBeacon = 0.12;
-// The expert: waypoints above the toast and the plate, joint steps toward their IK solutions.
-constexpr double kApproachHeight_m = 0.12;
-constexpr double kCarryHeight_m = 0.12;
-constexpr double kLiftFirstBelow_m = 0.08;
-constexpr double kReleaseHeight_m = 0.05;
-constexpr double kRetreatHeight_m = 0.25;
-constexpr double kRetreatTolerance_m = 0.03;
-constexpr double kAlignTolerance_m = 0.012;
-constexpr double kDescentTolerance_m = 0.03;
-// The expert descends onto the toast as a person at the joystick does: down to the table, not to
-// the slice's centre. It aims the tips this far below the centre, i.e. at the safety envelope's
-// tool floor (5 mm over the table), which stops them there. Aiming at the centre itself, the
-// descent slowed exponentially (the gain, 2.5 /s) just above the window a parallel gripper holds a
-// thin slice in (tips at most 3 mm above its centre, Ur5Arm): in the 0.6 s the fingers take it
-// got about 0.3 mm inside, and an arm at 80 % of the teacher's speed closed on nothing in every
-// layout tried (TabletopProtocolTest; docs/results.md).
-constexpr double kDescentBelowCentre_m = 0.003;
-// It closes once the tips are within this distance of the toast's centre in the plane and this
-// height above it: inside the window, with the arm still pushing down into it.
-constexpr double kGraspTolerance_m = 0.012;
-constexpr double kCloseHeight_m = 0.002;
-constexpr double kReleaseTolerance_m = 0.02;
-constexpr double kExpertGain_per_s = 2.5;
-// A teleoperating person is slower than a script: at 0.3 rad/s a demonstration takes about
-// 147 steps (14.7 s), close to the paper's 150 samples (16.6 s).
-constexpr double kExpertMaxSpeed_rad_s = 0.3;
-
 Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
-double PlanarDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return (a - b).head<2>().norm();
-}
 
 }  // namespace
 
@@ -305,66 +279,6 @@ void Tabletop::TrackGrasp(bool was_closed) {
   }
 }
 
-std::vector<float> Tabletop::ExpertAction() const {
-  const Eigen::Vector3d grip = arm_->GripPosition();
-  const Eigen::Vector3d toast = ToastPosition();
-  const Eigen::Vector3d plate = PlatePosition();
-  const bool holding = arm_->HeldObject() == toast_body_;
-  const bool delivered =
-      !holding && PlanarDistance(toast, plate) < kPlateRadius_m && toast.z() < kApproachHeight_m;
-  bool close = holding;
-  Eigen::Vector3d target;
-  if (holding && arm_->FingersClosing()) {
-    // A person waits for the fingers to close on the slice before lifting it.
-    target = grip;
-  } else if (holding) {
-    if (PlanarDistance(grip, plate) > kReleaseTolerance_m) {
-      // Lift straight up first: a joint-space move from the grasp would sweep the toast along
-      // the table.
-      target = grip.z() < kLiftFirstBelow_m ? Eigen::Vector3d(grip.x(), grip.y(), kCarryHeight_m)
-                                            : plate + Eigen::Vector3d(0, 0, kCarryHeight_m);
-    } else {
-      target = plate + Eigen::Vector3d(0, 0, kReleaseHeight_m);
-      // Low over the plate: open and let the toast drop onto it.
-      if ((grip - target).norm() < kReleaseTolerance_m) close = false;
-    }
-  } else if (delivered) {
-    target = plate + Eigen::Vector3d(0, 0, kRetreatHeight_m);
-  } else if (PlanarDistance(grip, toast) > kAlignTolerance_m &&
-             !(PlanarDistance(grip, toast) < kDescentTolerance_m &&
-               grip.z() < toast.z() + kApproachHeight_m - 0.02)) {
-    // Above the toast first; once descending, a joint-space move may drift a little sideways,
-    // which must not send the arm back up (hysteresis).
-    target = toast + Eigen::Vector3d(0, 0, kApproachHeight_m);
-  } else {
-    target = toast - Eigen::Vector3d(0, 0, kDescentBelowCentre_m);
-    // Close once inside the window, still pushing down: the fingers take 0.6 s to reach the
-    // slice (Ur5Arm), and a learner that closes a little early is still caught as it comes
-    // down. A close that caught nothing opens again for another try.
-    const bool missed = arm_->GripperClosed() && !arm_->FingersClosing();
-    close = !missed && PlanarDistance(grip, toast) < kGraspTolerance_m &&
-            grip.z() - toast.z() < kCloseHeight_m;
-  }
-  const Ur5Joints q = arm_->JointPositions();
-  const auto goal = arm_->SolveGraspIk(target, 0.0, q);
-  std::vector<float> u(Ur5Arm::kJoints + 1);
-  // Reset checked that the layout is reachable; a target out of reach here comes from a state a
-  // policy drove the arm into (e.g. toast flung up), where the teacher would hold still.
-  if (!goal) return u;
-  // Proportional in joint space, scaled as a whole (not clamped per joint) so the arm keeps to
-  // the straight joint-space path: clamping joints separately bends the descent sideways.
-  std::array<double, Ur5Arm::kJoints> v{};
-  double fastest = 0.0;
-  for (int i = 0; i < Ur5Arm::kJoints; ++i) {
-    v[i] = kExpertGain_per_s * ((*goal)[i] - q[i]);
-    fastest = std::max(fastest, std::abs(v[i]));
-  }
-  const double scale = fastest > kExpertMaxSpeed_rad_s ? kExpertMaxSpeed_rad_s / fastest : 1.0;
-  for (int i = 0; i < Ur5Arm::kJoints; ++i) u[i] = static_cast<float>(v[i] * scale);
-  u[Ur5Arm::kJoints] = close ? 1.0f : 0.0f;
-  return u;
-}
-
 std::vector<float> Tabletop::BeaconReading() {
   if (options_.placement == "none") return {};
   const Eigen::Vector3d beacon = BeaconPosition();
@@ -398,35 +312,6 @@ bool Tabletop::TaskSucceeded() const {
   const Eigen::Vector3d toast = ToastPosition();
   return arm_->HeldObject() != toast_body_ &&
          PlanarDistance(toast, PlatePosition()) < kPlateRadius_m && toast.z() < 0.05;
-}
-
-ToastGrip Tabletop::GripOnToast() const {
-  if (arm_->HeldObject() == toast_body_) return ToastGrip::kHolding;
-  if (!arm_->GripperClosed()) return ToastGrip::kOpen;
-  return arm_->FingersClosing() ? ToastGrip::kClosing : ToastGrip::kClosedOnNothing;
-}
-
-Eigen::Vector3d Tabletop::SurfaceBelowGrip() const {
-  const Eigen::Vector3d grip = arm_->GripPosition();
-  // Straight down from well above, past the arm (its geoms are group 1, left out): the spot
-  // stays on the toast's top while the finger tips go down beside it, as a person sees it. A
-  // held toast is left out too: the spot shows where it will land.
-  const mjtNum start[3] = {grip.x(), grip.y(), grip.z() + 0.5};
-  const mjtNum down[3] = {0, 0, -1};
-  // Groups 0 (the objects, the table) and 2 (the tags), not 1 (the arm) nor 3 (the plate's
-  // invisible collision box).
-  const mjtByte groups[mjNGROUP] = {1, 0, 1, 0, 0, 0};
-  int geom = -1;
-  const int exclude = arm_->HeldObject() == toast_body_ ? toast_body_ : -1;
-  const mjtNum distance =
-      mj_ray(scene_.model(), scene_.data(), start, down, groups, 1, exclude, &geom);
-  if (geom < 0 || distance < 0) return {grip.x(), grip.y(), 0.0};
-  return {grip.x(), grip.y(), start[2] - distance};
-}
-
-std::pair<double, double> Tabletop::GraspHeights() const {
-  const double floor = safety::SafetyLimits{}.tool_floor_m;
-  return {floor, arm_->HighestGraspHeight("toast").value_or(floor)};
 }
 
 bool Tabletop::DemonstrationDone() const {
