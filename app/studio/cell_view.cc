@@ -22,16 +22,23 @@ ui::BeaconView BeaconViewOf(const BeaconSpec& beacon, const store::SessionManife
   return view;
 }
 
+namespace {
+
+/// Where `camera` shows table point `p`, as the snapshot keeps pixels.
+std::array<float, 2> PixelOf(const tags::PinholeCamera& camera, const Eigen::Vector3d& p) {
+  const Eigen::Vector2d px = camera.Project(p);
+  return {static_cast<float>(px.x()), static_cast<float>(px.y())};
+}
+
+}  // namespace
+
 void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, int width,
                       int height, const store::SessionManifest& manifest,
                       const std::vector<float>& reading, ui::StudioSnapshot& s) {
   constexpr char kCamera[] = "top";
   s.camera = renderer.Render(world.scene(), kCamera, width, height);
   const tags::PinholeCamera camera = cell::SceneCamera(world.scene(), kCamera, width, height);
-  const auto pixel = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector2d px = camera.Project(p);
-    return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
-  };
+  const auto pixel = [&](const Eigen::Vector3d& p) { return PixelOf(camera, p); };
   const auto object = [&](const std::string& name, const Eigen::Vector3d& p) {
     const std::array<float, 2> px = pixel(p);
     s.objects.push_back({name, px[0], px[1]});
@@ -79,12 +86,8 @@ void ShowTeacherView(worlds::Tabletop& world, worlds::SceneRenderer& renderer,
   view.elevation_deg = static_cast<float>(shown.elevation_deg);
   view.distance_m = static_cast<float>(shown.distance_m);
   const tags::PinholeCamera pinhole = cell::OrbitSceneCamera(world.scene(), shown, width, height);
-  const auto pixel = [&](const Eigen::Vector3d& p) {
-    const Eigen::Vector2d px = pinhole.Project(p);
-    return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
-  };
-  view.grip_pixel = pixel(grip);
-  view.spot_pixel = pixel(foot);
+  view.grip_pixel = PixelOf(pinhole, grip);
+  view.spot_pixel = PixelOf(pinhole, foot);
 }
 
 ui::GripView GripViewOf(const worlds::Tabletop& world) {
@@ -114,15 +117,27 @@ ui::GripView GripViewOf(const worlds::Tabletop& world) {
 
 namespace recon::studio {
 
+namespace {
+
+/// The grip's velocity for a move on the table along `direction` at `deflection` (0-1) of
+/// `speed_m_s`, and `raise` (-1-1) up or down: one rule for every view the arrows follow.
+Eigen::Vector3d GripVelocity(const Eigen::Vector2d& direction, double deflection, float raise,
+                             double speed_m_s) {
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+  if (deflection > 0 && direction.norm() > 0) {
+    velocity.head<2>() = direction.normalized() * deflection * speed_m_s;
+  }
+  velocity.z() = std::clamp(static_cast<double>(raise), -1.0, 1.0) * speed_m_s;
+  return velocity;
+}
+
+}  // namespace
+
 Eigen::Vector3d TeleopVelocity(const worlds::OrbitCamera& camera, const ui::TeleopInput& input,
                                double speed_m_s) {
   const Eigen::Vector2d wanted =
       camera.TableRight() * input.screen_right + camera.TableAway() * input.screen_up;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  const double deflection = std::min(1.0, wanted.norm());
-  if (deflection > 0) velocity.head<2>() = wanted.normalized() * deflection * speed_m_s;
-  velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
-  return velocity;
+  return GripVelocity(wanted, std::min(1.0, wanted.norm()), input.raise, speed_m_s);
 }
 
 Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::Vector3d& grip,
@@ -132,14 +147,11 @@ Eigen::Vector3d TeleopVelocity(const tags::PinholeCamera& camera, const Eigen::V
   to_screen.col(0) = (camera.Project(grip + Eigen::Vector3d(0.05, 0, 0)) - at) / 0.05;
   to_screen.col(1) = (camera.Project(grip + Eigen::Vector3d(0, 0.05, 0)) - at) / 0.05;
   const Eigen::Vector2d wanted(input.screen_right, -input.screen_up);  // image rows grow down
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  const double deflection = std::min(1.0, wanted.norm());
-  if (deflection > 0 && std::abs(to_screen.determinant()) > 1e-9) {
-    const Eigen::Vector2d table = to_screen.inverse() * wanted;
-    velocity.head<2>() = table.normalized() * deflection * speed_m_s;
-  }
-  velocity.z() = std::clamp(static_cast<double>(input.raise), -1.0, 1.0) * speed_m_s;
-  return velocity;
+  // A camera that sees the table edge-on maps no screen direction to it: no sideways move.
+  const Eigen::Vector2d table = std::abs(to_screen.determinant()) > 1e-9
+                                    ? Eigen::Vector2d(to_screen.inverse() * wanted)
+                                    : Eigen::Vector2d::Zero();
+  return GripVelocity(table, std::min(1.0, wanted.norm()), input.raise, speed_m_s);
 }
 
 }  // namespace recon::studio

@@ -89,10 +89,11 @@ void SimulatedCellSource::ShowArm(const worlds::World& world, ui::StudioSnapshot
 
 void SimulatedCellSource::ShowSafety(const worlds::World* world, ui::SafetyView& view) const {
   if (world == nullptr) return;
-  const safety::SafetyStats& stats = TabletopOf(*world).safety_stats();
+  const worlds::Tabletop& tabletop = TabletopOf(*world);
+  const safety::SafetyStats& stats = tabletop.safety_stats();
   view.commands = stats.commands;
   view.changed = stats.changed;
-  view.limits = safety::DescribeLimits(safety::SafetyLimits{});
+  view.limits = safety::DescribeLimits(tabletop.safety_limits());
 }
 
 }  // namespace recon::studio

@@ -149,6 +149,8 @@ class Tabletop : public World {
   /// still reach the slice's side (Ur5Arm::HighestGraspHeight).
   std::pair<double, double> GraspHeights() const;
 
+  /// The envelope this world's commands pass (the tool floor a grasp comes down to).
+  const safety::SafetyLimits& safety_limits() const { return safety_.envelope().limits(); }
   /// What the safety envelope did to this world's commands since it was made.
   const safety::SafetyStats& safety_stats() const { return safety_.stats(); }
 

@@ -3,7 +3,6 @@
 
 #include <mujoco/mujoco.h>
 
-#include "engine/safety/safety_envelope.h"
 #include "engine/worlds/tabletop.h"
 
 namespace recon::worlds {
@@ -33,7 +32,7 @@ Eigen::Vector3d Tabletop::SurfaceBelowGrip() const {
 }
 
 std::pair<double, double> Tabletop::GraspHeights() const {
-  const double floor = safety::SafetyLimits{}.tool_floor_m;
+  const double floor = safety_limits().tool_floor_m;
   return {floor, arm_->HighestGraspHeight("toast").value_or(floor)};
 }
 
