@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/calib/calibration.h"
+#include "engine/core/error.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
 #include "engine/teach/recorder.h"
@@ -89,8 +91,21 @@ class CellSource {
   /// it, so the studio's own latch is enough there).
   virtual void EmergencyStop(bool engage, const std::string& reason) = 0;
 
-  /// Empty when the Calibrate step can run here; otherwise what to do instead.
-  virtual std::string CannotCalibrate() const = 0;
+  /// Whether the teacher paces the calibration, moving the beacon place by place (a real cell,
+  /// cell::GuidedCalibration), rather than the cell running it by itself as a job (the
+  /// simulated cell's scripted teacher).
+  virtual bool GuidesCalibration() const { return false; }
+  /// Starts a guided calibration of `points` places; UserError when it cannot run here now.
+  virtual void StartGuidedCalibration(int /*points*/) {
+    throw UserError("this cell calibrates by itself");
+  }
+  /// One pass of the guided calibration: reads the camera and the beacons (nothing else reads
+  /// the beacons meanwhile), fills `view`'s live fields and returns the fit once every place
+  /// is taken (then the run is over). UserError when the fit cannot be made.
+  virtual std::optional<calib::CalibrationReport> StepGuidedCalibration(ui::CalibrationView&) {
+    return std::nullopt;
+  }
+  virtual void StopGuidedCalibration() {}
   /// Empty when the Rollouts step can run here; otherwise why not.
   virtual std::string CannotRollOut() const = 0;
 };

@@ -174,10 +174,62 @@ std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::Worl
   return reading;
 }
 
-std::string RealCellSource::CannotCalibrate() const {
-  return "the Calibrate step runs the simulated cell's calibration only, for now: calibrate a "
-         "real cell with 'recon calibrate --camera ... --out cal.json' and start the studio with "
-         "--calibration cal.json";
+void RealCellSource::StartGuidedCalibration(int points) {
+  if (!cell_->camera_pose()) {
+    throw UserError("cannot calibrate: the camera's pose in the table frame is unknown (" +
+                    cell_->camera_pose_error() +
+                    "); the camera must see the table's corner tags when the studio opens the "
+                    "cell, so clear them and restart the studio");
+  }
+  const cell::BeaconTagProfile& tag = cell_->profile().beacon_tag;
+  cell::GuidedCalibrationOptions options;
+  options.points = points;
+  options.beacon = "plate";  // the beacon the task reads (RealCellWorldOptions::plate_beacon)
+  options.beacon_tag_id = tag.id;
+  options.beacon_tag = {tag.size_m, tag.height_m};
+  guided_ = std::make_unique<cell::GuidedCalibration>(cell_->camera_pose()->camera, options);
+  guided_frame_ = -1;
+}
+
+std::optional<calib::CalibrationReport> RealCellSource::StepGuidedCalibration(
+    ui::CalibrationView& view) {
+  if (!guided_) return std::nullopt;
+  std::shared_ptr<const devices::CameraFrame> frame;
+  std::string camera_error;
+  try {
+    frame = cell_->LatestFrame();
+  } catch (const UserError& e) {
+    camera_error = e.what();  // said in the prompt; the calibration goes on when it is back
+  }
+  const RgbImage* image = nullptr;
+  if (frame && frame->sequence != guided_frame_) {
+    guided_frame_ = frame->sequence;
+    image = &frame->image;
+  }
+  guided_->Update(image, cell_->beacons().Poll(), cell_->clock().NowSeconds());
+  const cell::GuidedCalibrationStatus& status = guided_->status();
+  view.guided = true;
+  view.points_collected = status.taken;
+  view.points_target = status.total;
+  view.prompt =
+      camera_error.empty() ? status.prompt : "The camera is not delivering: " + camera_error;
+  view.tag_seen = status.tag_seen && camera_error.empty();
+  view.tag_pixel = status.tag_pixel;
+  view.taken_pixel.clear();
+  for (const cell::CollectedPose& pose : guided_->poses()) {
+    const Eigen::Vector2d px = cell_->camera_pose()->camera.Project(pose.point.tag_m);
+    view.taken_pixel.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
+  }
+  view.beacon_uwb_m.clear();
+  if (status.beacon_uwb_m) {
+    for (int i = 0; i < 3; ++i)
+      view.beacon_uwb_m.push_back(static_cast<float>((*status.beacon_uwb_m)[i]));
+  }
+  view.beacon_silent = status.beacon_silent;
+  view.held_fraction = static_cast<float>(status.held_fraction);
+  if (!guided_->Done()) return std::nullopt;
+  const std::unique_ptr<cell::GuidedCalibration> done = std::move(guided_);
+  return done->Fit();
 }
 
 std::string RealCellSource::CannotRollOut() const {

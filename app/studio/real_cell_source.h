@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/studio/cell_source.h"
+#include "devices/cell/guided_calibration.h"
 #include "devices/cell/real_cell.h"
 
 namespace recon::studio {
@@ -61,7 +62,11 @@ class RealCellSource final : public CellSource {
   void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
   void EmergencyStop(bool engage, const std::string& reason) override;
 
-  std::string CannotCalibrate() const override;
+  bool GuidesCalibration() const override { return true; }
+  /// UserError when the camera's pose in the table frame is unknown (its tags were not seen).
+  void StartGuidedCalibration(int points) override;
+  std::optional<calib::CalibrationReport> StepGuidedCalibration(ui::CalibrationView& view) override;
+  void StopGuidedCalibration() override { guided_.reset(); }
   std::string CannotRollOut() const override;
 
  private:
@@ -70,6 +75,8 @@ class RealCellSource final : public CellSource {
   Eigen::Vector3d GripPoint() const;
 
   std::unique_ptr<cell::RealCell> cell_;
+  std::unique_ptr<cell::GuidedCalibration> guided_;
+  int64_t guided_frame_ = -1;  // the last frame the calibration looked at
 };
 
 }  // namespace recon::studio

@@ -46,7 +46,6 @@ class SimulatedCellSource final : public CellSource {
   void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
   void EmergencyStop(bool, const std::string&) override {}
 
-  std::string CannotCalibrate() const override { return ""; }
   std::string CannotRollOut() const override { return ""; }
 
  private:

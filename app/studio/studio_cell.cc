@@ -153,6 +153,8 @@ void StudioCell::Tick() {
       ShowPlaySample();
       if (!play_->recording()) CommitPlayChunk();
     }
+  } else if (calibrating_) {
+    StepCalibration();  // it reads the beacons itself
   } else if (world_ && now >= next_beacon_) {
     // The beacons report at 10 Hz. Only read here when nothing records: a simulated reading
     // draws beacon noise from the world's generator, which a recording must have to itself so
@@ -165,7 +167,7 @@ void StudioCell::Tick() {
   ApplyFinishedJob();
 }
 
-bool StudioCell::Busy() const { return Driving() || jobs_.Running(); }
+bool StudioCell::Busy() const { return Driving() || calibrating_ || jobs_.Running(); }
 
 bool StudioCell::Driving() const {
   return (recorder_ && recorder_->recording()) || (play_ && play_->recording());

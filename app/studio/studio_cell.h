@@ -117,6 +117,10 @@ class StudioCell {
   void Apply(const ui::AssignBeacon& c);
   void Apply(const ui::StartCalibration& c);
   void Apply(const ui::CancelCalibration& c);
+  /// Makes the calibration at `path` the session's (the file is moved into it) and says so.
+  void AttachCalibration(const std::string& path);
+  /// One pass of a guided calibration (a real cell's); saves the fit once every place is taken.
+  void StepCalibration();
   void Apply(const ui::StartRecording& c);
   void Apply(const ui::StopRecording& c);
   void Apply(const ui::DiscardRecording& c);
@@ -183,6 +187,9 @@ class StudioCell {
   teach::StreamHealth beacon_health_{10.0};
   teach::StreamHealth arm_health_{10.0};
   JobThread jobs_;
+  /// A guided calibration runs on the cell thread (the teacher moves the beacon), not as a job.
+  bool calibrating_ = false;
+  ui::CalibrationView guided_calibration_;  ///< its live side, for the snapshot
   ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
   bool dirty_ = true;
   teach::Step current_step_ = teach::Step::kCell;

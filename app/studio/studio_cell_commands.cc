@@ -14,6 +14,7 @@
 #include "app/cli/session_training.h"
 #include "app/studio/studio_cell.h"
 #include "app/studio/studio_jobs.h"
+#include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 
 namespace recon::studio {
@@ -30,23 +31,65 @@ void StudioCell::Apply(const ui::AssignBeacon& c) {
 
 void StudioCell::Apply(const ui::StartCalibration&) {
   RequireIdle("calibrate");
-  if (std::string why = source_->CannotCalibrate(); !why.empty()) throw UserError(why);
-  const uint64_t seed = session_->manifest().seed;
   const int points = options_.calibration_points;
+  if (source_->GuidesCalibration()) {
+    // The teacher moves the beacon place by place; the cell loop follows (StepCalibration).
+    source_->StartGuidedCalibration(points);
+    guided_calibration_ = ui::CalibrationView{};
+    calibrating_ = true;
+    status_ = "Calibrating: move the beacon to each place the Calibrate step asks for.";
+    return;
+  }
+  const uint64_t seed = session_->manifest().seed;
   const std::string dir = session_->dir();
   jobs_.Start(JobKind::kCalibration,
               [this, seed, points, dir](JobThread& jobs) -> std::function<void()> {
                 const std::string path = (fs::path(dir) / "calibration.new.json").string();
                 CalibrateCell(jobs, seed, points, path);
-                return [this, path] {
-                  session_->AttachCalibration(path);
-                  fs::remove(path);
-                  status_ = "Calibrated.";
-                };
+                return [this, path] { AttachCalibration(path); };
               });
 }
 
-void StudioCell::Apply(const ui::CancelCalibration&) { jobs_.Cancel(); }
+void StudioCell::Apply(const ui::CancelCalibration&) {
+  if (calibrating_) {
+    source_->StopGuidedCalibration();
+    calibrating_ = false;
+    status_ = "Calibration cancelled: the session keeps the calibration it had.";
+    return;
+  }
+  jobs_.Cancel();
+}
+
+void StudioCell::AttachCalibration(const std::string& path) {
+  session_->AttachCalibration(path);
+  fs::remove(path);
+  if (source_->GuidesCalibration()) {
+    // A real cell's world reads the beacon through the calibration: make it again with it.
+    world_ = source_->MakeSessionWorld(*session_);
+  }
+  const calib::CalibrationReport report = calib::LoadCalibration(
+      (fs::path(session_->dir()) / session_->manifest().calibration_file).string());
+  status_ = std::string("Calibrated: ") + (report.passed ? "PASS" : "FAIL") + ".";
+}
+
+void StudioCell::StepCalibration() {
+  std::optional<calib::CalibrationReport> report;
+  try {
+    report = source_->StepGuidedCalibration(guided_calibration_);
+  } catch (const UserError& e) {
+    source_->StopGuidedCalibration();
+    calibrating_ = false;
+    Changed();
+    AddError(std::string("the calibration stopped: ") + e.what());
+    return;
+  }
+  if (!report) return;
+  calibrating_ = false;
+  Changed();
+  const std::string path = (fs::path(session_->dir()) / "calibration.new.json").string();
+  calib::SaveCalibration(*report, path);
+  AttachCalibration(path);
+}
 
 void StudioCell::Apply(const ui::StartRecording&) {
   RequireIdle("record");

@@ -34,6 +34,21 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   const JobState job = jobs_.Peek();
   s.calibration.running = job.running && job.kind == JobKind::kCalibration;
   s.calibration.points_collected = job.calibration_points;
+  if (calibrating_) {
+    const ui::CalibrationView& live = guided_calibration_;
+    ui::CalibrationView& c = s.calibration;
+    c.running = true;
+    c.guided = true;
+    c.points_collected = live.points_collected;
+    c.points_target = live.points_target;
+    c.prompt = live.prompt;
+    c.tag_seen = live.tag_seen;
+    c.tag_pixel = live.tag_pixel;
+    c.taken_pixel = live.taken_pixel;
+    c.beacon_uwb_m = live.beacon_uwb_m;
+    c.beacon_silent = live.beacon_silent;
+    c.held_fraction = live.held_fraction;
+  }
   s.recording = recorder_ && recorder_->recording();
   s.recording_samples = recorder_ ? recorder_->samples() : 0;
   s.recording_max_samples = world_->EpisodeLength();
@@ -72,6 +87,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   }
   s.busy_with = s.recording           ? "the recording"
                 : s.recording_play    ? "the play data recording"
+                : calibrating_        ? "the calibration"
                 : jobs_.RunningKind() ? std::string("the ") + JobKindName(*jobs_.RunningKind())
                                       : "";
   s.rollout_tests = options_.rollout_tests;

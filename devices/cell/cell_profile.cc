@@ -93,6 +93,11 @@ std::string Resolve(const fs::path& folder, const std::string& path) {
 
 /// A V4L2 index ("0") or a /dev/ path stays as given; a file or folder is the user's path.
 std::string ResolveCameraDevice(const fs::path& folder, const std::string& device) {
+  if (device.rfind(kTwinCameraPrefix, 0) == 0) {
+    const std::string layout = device.substr(std::char_traits<char>::length(kTwinCameraPrefix));
+    if (layout.empty()) throw UserError("a twin camera names its layout file: twin:layout.json");
+    return kTwinCameraPrefix + Resolve(folder, layout);
+  }
   bool digits = device.size() <= 4;
   for (char c : device) digits = digits && c >= '0' && c <= '9';
   if (digits || device.rfind("/dev/", 0) == 0) return device;
@@ -110,7 +115,12 @@ CameraProfile ReadCamera(const Fields& top, const fs::path& folder) {
   const Fields camera = top.Object("camera");
   camera.OnlyKnown({"device", "calibration"});
   CameraProfile profile;
-  profile.device = ResolveCameraDevice(folder, camera.String("device"));
+  const std::string device = camera.String("device");
+  try {
+    profile.device = ResolveCameraDevice(folder, device);
+  } catch (const UserError& e) {
+    camera.Fail("device", e.what());
+  }
   if (camera.Has("calibration"))
     profile.calibration = Resolve(folder, camera.String("calibration"));
   return profile;
@@ -176,6 +186,32 @@ Eigen::Isometry3d ReadBase(const Fields& top) {
   return pose;
 }
 
+BeaconTagProfile ReadBeaconTag(const Fields& top) {
+  const Fields tag = top.Object("beacon_tag");
+  tag.OnlyKnown({"id", "size_m", "height_m"});
+  BeaconTagProfile profile;
+  if (tag.Has("id")) {
+    const double id = tag.Number("id");
+    if (id != std::floor(id) || id < 0 || id > 586) {
+      tag.Fail("id", "expected a tag36h11 id, a whole number from 0 to 586");
+    }
+    profile.id = static_cast<int>(id);
+  }
+  if (tag.Has("size_m")) {
+    profile.size_m = tag.Number("size_m");
+    if (!(profile.size_m > 0.005 && profile.size_m < 0.5)) {
+      tag.Fail("size_m", "expected the black border's side in metres, 0.005 to 0.5");
+    }
+  }
+  if (tag.Has("height_m")) {
+    profile.height_m = tag.Number("height_m");
+    if (!(profile.height_m >= 0 && profile.height_m < 1)) {
+      tag.Fail("height_m", "expected the tag's height over the table in metres, 0 to 1");
+    }
+  }
+  return profile;
+}
+
 }  // namespace
 
 CellProfile ReadCellProfile(const std::string& path) {
@@ -189,7 +225,7 @@ CellProfile ReadCellProfile(const std::string& path) {
   }
   if (!root.is_object()) throw UserError(path + ": expected a JSON object (a cell profile)");
   const Fields top(root, path, "");
-  top.OnlyKnown({"camera", "table_tags", "beacons", "robot", "robot_base_in_table"});
+  top.OnlyKnown({"camera", "table_tags", "beacons", "robot", "robot_base_in_table", "beacon_tag"});
   const fs::path folder = fs::absolute(fs::path(path)).parent_path();
 
   CellProfile profile;
@@ -199,6 +235,7 @@ CellProfile ReadCellProfile(const std::string& path) {
   profile.beacons = ReadBeacons(top, folder);
   if (top.Has("robot")) profile.robot = ReadRobot(top);
   if (top.Has("robot_base_in_table")) profile.robot_base_in_table = ReadBase(top);
+  if (top.Has("beacon_tag")) profile.beacon_tag = ReadBeaconTag(top);
   return profile;
 }
 

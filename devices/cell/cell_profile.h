@@ -10,10 +10,15 @@
 
 namespace recon::cell {
 
+/// A camera device that is a digital twin (cell::TwinCamera) rather than a camera:
+/// "twin:<layout file>", drawing the tabletop scene with the profile's robot.
+constexpr char kTwinCameraPrefix[] = "twin:";
+
 /// The top-down camera of a real cell.
 struct CameraProfile {
   /// What camera::OpenCamera opens: a V4L2 device ("/dev/video0", "0"), a video file or a
-  /// folder of frames (the fake camera), the latter two resolved against the profile's folder.
+  /// folder of frames (the fake camera), the latter two resolved against the profile's folder;
+  /// or "twin:<layout file>" (kTwinCameraPrefix), the layout resolved the same way.
   std::string device;
   /// The calibration YAML (camera::ReadCameraCalibration), absolute. Without one the camera
   /// delivers raw frames and the cell has no intrinsics, so no camera pose.
@@ -35,6 +40,13 @@ struct RobotProfile {
   int script_port = 30002;
 };
 
+/// The AprilTag on top of the beacon that a calibration moves: what the camera locates it by.
+struct BeaconTagProfile {
+  int id = 10;
+  double size_m = 0.0352;  ///< its black border's side
+  double height_m = 0.06;  ///< its face's height over the table
+};
+
 /// Everything that describes one real teaching cell, as read from its JSON profile (see
 /// docs/hardware.md, "Cell profile"): which devices to open and where the arm stands. Paths in
 /// here are absolute or as the user gave a device ("/dev/...").
@@ -48,6 +60,7 @@ struct CellProfile {
   /// The arm's base in the table frame. Identity is the simulated cell's convention: the table
   /// frame's origin is the arm's base.
   Eigen::Isometry3d robot_base_in_table = Eigen::Isometry3d::Identity();
+  BeaconTagProfile beacon_tag;
 };
 
 /// Reads a cell profile:
@@ -56,14 +69,15 @@ struct CellProfile {
 ///      "table_tags": "table_tags.json",
 ///      "beacons": {"ports": ["/dev/ttyACM0"], "mode": "tlv", "names": {"0x1A2B": "plate"}},
 ///      "robot": {"host": "192.168.1.10", "rtde_port": 30004, "script_port": 30002},
-///      "robot_base_in_table": {"xyz_m": [0, 0, 0], "yaw_deg": 0}}
+///      "robot_base_in_table": {"xyz_m": [0, 0, 0], "yaw_deg": 0},
+///      "beacon_tag": {"id": 10, "size_m": 0.0352, "height_m": 0.06}}
 ///
-/// camera.calibration, beacons.mode (default "lec"), beacons.names, robot, its ports and
-/// robot_base_in_table are optional. Relative paths (a camera file or folder, the calibration,
-/// the table tags, a serial port) are resolved against the profile's folder. Throws UserError
-/// naming the file and the field, e.g. "cell.json: beacons.ports[1]: expected a string", for a
-/// missing file, a file that is not JSON, a missing or mistyped field and an unknown mode. The
-/// files it names are not opened here (RealCell does that).
+/// camera.calibration, beacons.mode (default "lec"), beacons.names, robot, its ports,
+/// robot_base_in_table and beacon_tag (and each of its fields) are optional. Relative paths (a
+/// camera file or folder, the calibration, the table tags, a serial port) are resolved against the
+/// profile's folder. Throws UserError naming the file and the field, e.g. "cell.json:
+/// beacons.ports[1]: expected a string", for a missing file, a file that is not JSON, a missing or
+/// mistyped field and an unknown mode. The files it names are not opened here (RealCell does that).
 CellProfile ReadCellProfile(const std::string& path);
 
 }  // namespace recon::cell

@@ -1,5 +1,8 @@
 #include "devices/cell/real_cell.h"
 
+#include "devices/cell/twin_camera.h"
+#include "devices/cell/twin_scene.h"
+
 #include <algorithm>
 #include <chrono>
 #include <deque>
@@ -8,6 +11,8 @@
 #include "devices/camera/camera_calibration_file.h"
 #include "devices/camera/open_camera.h"
 #include "devices/camera/table_tags_file.h"
+#include "devices/cell/twin_camera.h"
+#include "devices/cell/twin_scene.h"
 #include "devices/robot/ur_arm.h"
 #include "devices/tags/tag_detector.h"
 #include "devices/uwb/beacon_hub.h"
@@ -239,12 +244,34 @@ void RealCell::OpenCamera(const RealCellOptions& options) {
       intrinsics_ = calibration.ToIntrinsics();
       open.undistort = calibration;
     }
-    camera_kind_ = CameraKindName(camera::ClassifyCameraSource(device));
-    grabber_ =
-        std::make_unique<FrameGrabber>(camera::OpenCamera(device, open), device, options.camera);
+    std::unique_ptr<devices::Camera> camera;
+    if (device.rfind(kTwinCameraPrefix, 0) == 0) {
+      camera = OpenTwinCamera(device.substr(std::char_traits<char>::length(kTwinCameraPrefix)));
+      camera_kind_ = "digital twin";
+    } else {
+      camera_kind_ = CameraKindName(camera::ClassifyCameraSource(device));
+      camera = camera::OpenCamera(device, open);
+    }
+    grabber_ = std::make_unique<FrameGrabber>(std::move(camera), device, options.camera);
   } catch (const UserError& e) {
     throw UserError("camera " + device + ": " + e.what());
   }
+}
+
+std::unique_ptr<devices::Camera> RealCell::OpenTwinCamera(const std::string& layout) const {
+  if (!profile_.robot) {
+    throw UserError("a digital twin draws the profile's robot, and the profile names none");
+  }
+  TwinCameraOptions twin;
+  twin.layout_file = layout;
+  twin.robot_host = profile_.robot->host;
+  twin.rtde_port = profile_.robot->rtde_port;
+  if (intrinsics_) {  // the size the calibration describes
+    twin.width = intrinsics_->width;
+    twin.height = intrinsics_->height;
+  }
+  ReadTwinLayout(layout);  // a bad layout is the profile's error now, not a camera that fails
+  return std::make_unique<TwinCamera>(twin, clock_);
 }
 
 void RealCell::EstimatePose(double timeout_s) {

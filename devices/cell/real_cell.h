@@ -144,6 +144,8 @@ class RealCell {
   class Beacons;
 
   void OpenCamera(const RealCellOptions& options);
+  /// The digital twin's camera (a profile camera "twin:<layout>"), following the profile's robot.
+  std::unique_ptr<devices::Camera> OpenTwinCamera(const std::string& layout) const;
   void EstimatePose(double timeout_s);
   void OpenRobot(const RealCellOptions& options);
 

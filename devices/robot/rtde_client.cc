@@ -198,6 +198,7 @@ void RtdeClient::Handle(const RtdePacket& packet) {
     if (name == "actual_TCP_pose") state.actual_tcp_pose = std::get<std::array<double, 6>>(v);
     if (name == "robot_mode") state.robot_mode = std::get<int32_t>(v);
     if (name == "safety_mode") state.safety_mode = std::get<int32_t>(v);
+    if (name == "actual_digital_output_bits") state.digital_output_bits = std::get<uint64_t>(v);
   }
   state.received_s = now_s;
   state.sequence = ++packets_;

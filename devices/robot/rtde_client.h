@@ -27,6 +27,8 @@ struct RtdeState {
   int32_t robot_mode = -1;                  ///< see RobotModeName (7: RUNNING)
   int32_t safety_mode = 0;                  ///< see SafetyModeName (1: NORMAL)
   double speed_scaling = 0;
+  /// RTDE `actual_digital_output_bits`: bits 0-7 standard, 8-15 configurable, 16-17 the tool's.
+  uint64_t digital_output_bits = 0;
   /// When the package arrived: the host's steady clock (std::chrono::steady_clock since its
   /// epoch), in seconds, so every device of this process shares the time base.
   double received_s = 0;

@@ -128,6 +128,14 @@ void Ur5Arm::Reset(const Ur5Joints& q) {
   mj_forward(m, d);
 }
 
+void Ur5Arm::ShowPose(const Ur5Joints& q, double gripper_opening) {
+  Reset(q);
+  const double opening = std::isfinite(gripper_opening) ? Clamp(gripper_opening, 0.0, 1.0) : 1.0;
+  for (int i = 0; i < 2; ++i) scene_->data()->qpos[finger_qpos_adr_[i]] = opening * kFingerOpen_m;
+  finger_setpoint_ = opening * kFingerOpen_m;
+  mj_forward(scene_->model(), scene_->data());
+}
+
 Ur5Joints Ur5Arm::JointPositions() const {
   Ur5Joints q;
   for (int i = 0; i < kJoints; ++i) q[i] = scene_->data()->qpos[qpos_adr_[i]];

@@ -43,6 +43,10 @@ class Ur5Arm {
 
   /// Puts the arm at `q` at rest, gripper open, nothing held, and recomputes positions.
   void Reset(const Ur5Joints& q);
+  /// Poses the arm without simulating it, as Reset does, with the fingers at `gripper_opening`
+  /// (0 closed, 1 open, clamped): what a digital twin shows of an arm whose joints come from
+  /// elsewhere. Nothing is held.
+  void ShowPose(const Ur5Joints& q, double gripper_opening);
 
   Ur5Joints JointPositions() const;
   Ur5Joints JointVelocities() const;

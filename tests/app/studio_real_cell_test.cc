@@ -187,6 +187,13 @@ TEST_F(StudioRealCellTest, TeachesADemonstrationOnTheRealDevicesAndTheEStopReach
   controller.Push(ui::EmergencyStop{false, ""});
   s = WaitFor(controller, [](const auto& now) { return !now.safety.estop; });
   EXPECT_FALSE(s.safety.estop);
+
+  // Calibrating needs the camera's pose, which a view without the table's tags cannot give.
+  const size_t errors = s.errors.size();
+  controller.Push(ui::StartCalibration{});
+  s = WaitFor(controller, [&](const auto& now) { return now.errors.size() > errors; });
+  EXPECT_THAT(s.errors.back(), HasSubstr("the camera's pose in the table frame is unknown"));
+  EXPECT_FALSE(s.calibration.running);
 }
 
 TEST_F(StudioRealCellTest, ABadProfileOrASimulatedSessionIsRefusedByName) {

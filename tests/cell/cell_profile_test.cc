@@ -44,6 +44,10 @@ class CellProfileTest : public ::testing::Test {
     return "(no error)";
   }
   std::string Path() const { return (dir_ / "cell.json").string(); }
+  CellProfile ReadText(const std::string& text) {
+    WriteText(dir_ / "cell.json", text);
+    return ReadCellProfile(Path());
+  }
 
   fs::path dir_;
 };
@@ -158,6 +162,40 @@ TEST_F(CellProfileTest, EachBadFieldIsNamedWithTheFile) {
   EXPECT_THAT(ErrorFor(R"({"camera": {"device": "0", "fps": 30}, "table_tags": "t.json",
                            "beacons": {"ports": ["a"]}})"),
               HasSubstr(file + "camera.fps: unknown field"));
+  // A digital twin's camera names its layout; the beacon's tag is what calibration looks for.
+  EXPECT_EQ(ErrorFor(R"({"camera": {"device": "twin:"}, "table_tags": "t.json",
+                         "beacons": {"ports": ["a"]}})"),
+            file + "camera.device: a twin camera names its layout file: twin:layout.json");
+  const auto tag_error = [&](const std::string& tag) {
+    return ErrorFor(R"({"camera": {"device": "0"}, "table_tags": "t.json",
+                        "beacons": {"ports": ["a"]}, "beacon_tag": )" +
+                    tag + "}");
+  };
+  EXPECT_EQ(tag_error(R"({"id": 1.5})"),
+            file + "beacon_tag.id: expected a tag36h11 id, a whole number from 0 to 586");
+  EXPECT_EQ(tag_error(R"({"id": 587})"),
+            file + "beacon_tag.id: expected a tag36h11 id, a whole number from 0 to 586");
+  EXPECT_EQ(tag_error(R"({"size_m": 0})"),
+            file + "beacon_tag.size_m: expected the black border's side in metres, 0.005 to 0.5");
+  EXPECT_EQ(tag_error(R"({"height_m": -0.1})"),
+            file +
+                "beacon_tag.height_m: expected the tag's height over the table in metres, 0 "
+                "to 1");
+  EXPECT_THAT(tag_error(R"({"colour": "red"})"), HasSubstr(file + "beacon_tag.colour: unknown"));
+}
+
+TEST_F(CellProfileTest, ATwinsLayoutAndTheBeaconTagAreRead) {
+  const CellProfile profile = ReadText(R"({"camera": {"device": "twin:twin/layout.json"},
+      "table_tags": "t.json", "beacons": {"ports": ["a"]},
+      "beacon_tag": {"id": 12, "size_m": 0.04, "height_m": 0.03}})");
+  EXPECT_EQ(profile.camera.device, "twin:" + (dir_ / "twin" / "layout.json").string());
+  EXPECT_EQ(profile.beacon_tag.id, 12);
+  EXPECT_DOUBLE_EQ(profile.beacon_tag.size_m, 0.04);
+  EXPECT_DOUBLE_EQ(profile.beacon_tag.height_m, 0.03);
+  const CellProfile defaults = ReadText(R"({"camera": {"device": "0"}, "table_tags": "t.json",
+      "beacons": {"ports": ["a"]}})");
+  EXPECT_EQ(defaults.beacon_tag.id, 10);
+  EXPECT_DOUBLE_EQ(defaults.beacon_tag.size_m, 0.0352);
 }
 
 }  // namespace

@@ -123,6 +123,17 @@ struct CalibrationView {
   double rmse_m = 0, p95_m = 0, threshold_m = 0.10;
   std::vector<double> residual_m;  ///< per point
   std::vector<bool> inlier;
+  /// A real cell's calibration is paced by the teacher, who moves the beacon: what to do now
+  /// and what the devices see of it while it runs (cell::GuidedCalibration).
+  bool guided = false;
+  std::string prompt;
+  bool tag_seen = false;
+  std::array<float, 2> tag_pixel{0, 0};  ///< the beacon's tag in the camera image
+  /// The places taken so far, where the camera sees them.
+  std::vector<std::array<float, 2>> taken_pixel;
+  std::vector<float> beacon_uwb_m;  ///< the newest reading, the beacons' own frame; empty: none
+  bool beacon_silent = false;
+  float held_fraction = 0;  ///< 0 to 1 through the hold that takes a place
 };
 
 /// One training run (a method) as the Train screen shows it.

@@ -1,0 +1,237 @@
+// The studio on a real cell's path without hardware: a digital twin (cell::TwinCamera drawing the
+// tabletop scene with the UR5 where a FakeUrController on loopback TCP says it is), the plate's
+// beacon a FakeDwm1001 on a pseudo-terminal reporting through a hidden UWB frame. The Calibrate
+// step runs place by place as the teacher (this test) moves the beacon, says when the beacon goes
+// silent, and saves a calibration that passes and maps the beacon onto the table.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "app/studio/studio_controller.h"
+#include "devices/cell/twin_cell.h"
+#include "devices/cell/twin_scene.h"
+#include "devices/robot/fake_ur_controller.h"
+#include "devices/uwb/fake_dwm1001.h"
+#include "engine/calib/calibration.h"
+#include "engine/core/rng.h"
+#include "engine/store/session.h"
+
+namespace recon::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+constexpr uint64_t kPlateId = 0xDECA0000000000A1ull;
+
+ui::StudioSnapshot WaitFor(const StudioController& controller,
+                           const std::function<bool(const ui::StudioSnapshot&)>& done,
+                           double timeout_s = 30) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  for (;;) {
+    ui::StudioSnapshot s = controller.Snapshot();
+    if (done(s)) return s;
+    if (std::chrono::steady_clock::now() > deadline) {
+      ADD_FAILURE() << "timed out; status: " << s.status << "; prompt: " << s.calibration.prompt
+                    << (s.errors.empty() ? "" : "; last error: " + s.errors.back());
+      return s;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+/// The plate's beacon in the twin: where the layout puts the plate, as the installation's UWB
+/// anchors measure it (a hidden frame 2 m off and turned 30 degrees), with +-1 cm of noise.
+class TwinBeacon {
+ public:
+  explicit TwinBeacon(const Eigen::Vector3d& table_m) : table_m_(table_m) {
+    uwb::FakeDwm1001::Options options;
+    options.period_ms = 50;
+    options.node_id = kPlateId;
+    options.next_reading = [this] {
+      std::lock_guard lock(mutex_);
+      uwb::UwbReading r;
+      r.has_position = !silent_;
+      const Eigen::Vector3d p = hidden_.Apply(table_m_);
+      r.x_m = p.x() + noise_.Uniform(-0.01, 0.01);
+      r.y_m = p.y() + noise_.Uniform(-0.01, 0.01);
+      r.z_m = p.z();
+      r.quality = 90;
+      return r;
+    };
+    fake_ = std::make_unique<uwb::FakeDwm1001>(options);
+  }
+  ~TwinBeacon() { fake_.reset(); }  // its thread calls back into this object
+
+  void MoveTo(const Eigen::Vector3d& table_m) {
+    std::lock_guard lock(mutex_);
+    table_m_ = table_m;
+  }
+  void Silence(bool silent) {
+    std::lock_guard lock(mutex_);
+    silent_ = silent;
+  }
+  const std::string& port() const { return fake_->port(); }
+
+ private:
+  const calib::RigidTransform hidden_{Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()).matrix(),
+                                      Eigen::Vector3d(2.0, -1.0, 0.3)};
+  std::mutex mutex_;
+  Eigen::Vector3d table_m_;
+  bool silent_ = false;
+  Rng noise_{31};  // seed 31: the readings' noise
+  std::unique_ptr<uwb::FakeDwm1001> fake_;
+};
+
+class StudioTwinCellTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/recon-studio-twin-XXXXXX";
+    ASSERT_NE(::mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+    layout_.bowl = {0.12, 0.0};  // clear of the beacon's places
+    scene_.Arrange(layout_);
+    beacon_ = std::make_unique<TwinBeacon>(scene_.BeaconPosition());
+    robot_ = std::make_unique<robot::FakeUrController>();
+    cell::TwinCellDevices devices;
+    devices.rtde_port = robot_->rtde_port();
+    devices.script_port = robot_->script_port();
+    devices.beacon_ports = {beacon_->port()};
+    devices.beacon_names = {{"0xDECA0000000000A1", "plate"}};
+    // The shell's `lec` stream, where a tag without a fix prints a line without a position (in
+    // TLV mode the fake answers every request with the last position).
+    devices.beacon_mode = "lec";
+    profile_ = cell::WriteTwinCell((dir_ / "twin").string(), devices, layout_);
+  }
+  void TearDown() override {
+    robot_.reset();
+    beacon_.reset();
+    fs::remove_all(dir_);
+  }
+
+  StudioOptions Options() const {
+    StudioOptions options;
+    options.session_dir = (dir_ / "session").string();
+    options.recent_sessions_file = (dir_ / "recent.json").string();
+    options.cell_profile = profile_;
+    options.dev_dir = (dir_ / "no-dev").string();
+    options.calibration_points = 5;
+    options.countdown_s = 0;
+    return options;
+  }
+
+  /// The teacher puts the plate, the beacon beside it, at table (x, y).
+  Eigen::Vector3d PutPlate(double x, double y) {
+    layout_.plate = {x, y};
+    scene_.Arrange(layout_);
+    cell::WriteTwinLayout((dir_ / "twin" / "layout.json").string(), layout_);
+    beacon_->MoveTo(scene_.BeaconPosition());
+    return scene_.BeaconPosition();
+  }
+
+  fs::path dir_;
+  std::string profile_;
+  cell::TwinLayout layout_;
+  cell::TwinScene scene_;
+  std::unique_ptr<TwinBeacon> beacon_;
+  std::unique_ptr<robot::FakeUrController> robot_;
+};
+
+TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
+  StudioController controller(Options());
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
+  EXPECT_EQ(s.cell_kind, "real");
+  EXPECT_EQ(s.camera.width, 1280);
+  controller.Push(ui::OpenStep{teach::Step::kCalibrate});
+  controller.Push(ui::StartCalibration{});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.calibration.running && now.calibration.guided && !now.calibration.prompt.empty();
+  });
+  EXPECT_EQ(s.calibration.points_target, 5);
+  EXPECT_EQ(s.busy_with, "the calibration");
+  // Nothing else starts meanwhile.
+  controller.Push(ui::StartRecording{});
+  s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+  EXPECT_THAT(s.errors.back(), HasSubstr("while something else runs"));
+  controller.Push(ui::DismissErrors{});
+
+  const std::vector<Eigen::Vector2d> places = {
+      {0.35, -0.3}, {0.75, -0.25}, {0.7, 0.2}, {0.4, 0.15}, {0.55, -0.05}};
+  std::vector<Eigen::Vector3d> truth;
+  const tags::PinholeCamera camera = scene_.TopCamera(1280, 960);
+  for (size_t i = 0; i < places.size(); ++i) {
+    // The beacon's battery runs flat as it is moved to the third place: the screen says so and
+    // nothing is taken; it reports again, and the place is taken.
+    if (i == 2) beacon_->Silence(true);
+    truth.push_back(PutPlate(places[i].x(), places[i].y()));
+    if (i == 2) {
+      s = WaitFor(controller, [](const auto& now) { return now.calibration.beacon_silent; });
+      EXPECT_THAT(s.calibration.prompt, HasSubstr("No reading from the beacon"));
+      EXPECT_EQ(s.calibration.points_collected, 2);
+      // Where the camera sees the tag, drawn over the live view.
+      ASSERT_TRUE(s.calibration.tag_seen);
+      const Eigen::Vector2d expected = camera.Project(truth.back());
+      EXPECT_NEAR(s.calibration.tag_pixel[0], expected.x(), 2.0);
+      EXPECT_NEAR(s.calibration.tag_pixel[1], expected.y(), 2.0);
+      beacon_->Silence(false);
+    }
+    s = WaitFor(controller, [&](const auto& now) {
+      return now.calibration.points_collected >= static_cast<int>(i + 1) ||
+             !now.calibration.running;
+    });
+    if (i + 1 < places.size()) {
+      EXPECT_EQ(s.calibration.points_collected, static_cast<int>(i + 1));
+      EXPECT_EQ(s.calibration.taken_pixel.size(), i + 1);
+    }
+  }
+  s = WaitFor(controller,
+              [](const auto& now) { return !now.calibration.running && now.calibration.present; });
+  EXPECT_TRUE(s.calibration.passed);
+  EXPECT_LT(s.calibration.rmse_m, 0.03);
+  EXPECT_EQ(s.calibration.residual_m.size(), 5u);
+  EXPECT_THAT(s.status, HasSubstr("Calibrated: PASS"));
+
+  // The session keeps the fit, and the beacon now reads where the plate's beacon is on the table.
+  const store::Session session =
+      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
+  ASSERT_FALSE(session.manifest().calibration_file.empty());
+  const calib::CalibrationReport saved = calib::LoadCalibration(
+      (fs::path(session.dir()) / session.manifest().calibration_file).string());
+  EXPECT_TRUE(saved.passed);
+  controller.Push(ui::AssignBeacon{"plate", "plate"});
+  const Eigen::Vector3d now_at = PutPlate(0.6, -0.2);
+  s = WaitFor(controller, [&](const auto& now) {
+    return now.beacons.size() == 1 && now.beacons[0].reading.size() == 2 &&
+           std::abs(now.beacons[0].reading[0] - now_at.x()) < 0.03 &&
+           std::abs(now.beacons[0].reading[1] - now_at.y()) < 0.03;
+  });
+  ASSERT_EQ(s.beacons.size(), 1u);
+}
+
+TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
+  StudioController controller(Options());
+  WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
+  controller.Push(ui::StartCalibration{});
+  PutPlate(0.4, -0.25);
+  ui::StudioSnapshot s =
+      WaitFor(controller, [](const auto& now) { return now.calibration.points_collected == 1; });
+  controller.Push(ui::CancelCalibration{});
+  s = WaitFor(controller, [](const auto& now) { return !now.calibration.running; });
+  EXPECT_FALSE(s.calibration.present);
+  EXPECT_THAT(s.status, HasSubstr("cancelled"));
+  const store::Session session =
+      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
+  EXPECT_TRUE(session.manifest().calibration_file.empty());
+  EXPECT_FALSE(fs::exists(dir_ / "session" / "calibration.new.json"));
+}
+
+}  // namespace
+}  // namespace recon::studio
