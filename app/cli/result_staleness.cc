@@ -123,6 +123,14 @@ std::string RolloutStaleness(const store::Session& session, const store::Rollout
          "out again";
 }
 
+std::string TrialStaleness(const store::Session& session, const store::RealTrialLog& trials) {
+  if (!trials.model_id) return "";
+  const std::string now = CheckpointModelId(session.CheckpointPath(trials.method));
+  if (now.empty()) return "the model these trials ran is gone: retrain";
+  if (now != *trials.model_id) return "the model was retrained after these trials";
+  return "";
+}
+
 SessionResults ReadSessionResults(const store::Session& session) {
   SessionResults results;
   for (auto& [method, record] : store::ReadTrainingRecords(session)) {
@@ -136,6 +144,10 @@ SessionResults ReadSessionResults(const store::Session& session) {
                                            ? std::nullopt
                                            : std::make_optional(trained->second.record));
     results.rollouts[method] = {std::move(summary), std::move(why)};
+  }
+  for (auto& [method, log] : store::ReadRealTrialLogs(session)) {
+    std::string why = TrialStaleness(session, log);
+    results.trials[method] = {std::move(log), std::move(why)};
   }
   return results;
 }

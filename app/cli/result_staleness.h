@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/store/real_trials.h"
 #include "engine/store/rollout_summary.h"
 #include "engine/store/session.h"
 #include "engine/store/training_record.h"
@@ -47,10 +48,15 @@ struct CheckedResult {
 struct SessionResults {
   std::map<std::string, CheckedResult<store::TrainingRecord>> training;
   std::map<std::string, CheckedResult<store::RolloutSummary>> rollouts;
+  /// Trials on a real arm: out of date once the model they ran was retrained.
+  std::map<std::string, CheckedResult<store::RealTrialLog>> trials;
 };
 
-/// Reads every training record and rollout summary of the session and checks each. UserError
-/// naming the file and field of one that cannot be read.
+/// Why a method's trials on a real arm no longer describe its model ("" when they do).
+std::string TrialStaleness(const store::Session& session, const store::RealTrialLog& trials);
+
+/// Reads every training record, rollout summary and trial log of the session and checks each.
+/// UserError naming the file and field of one that cannot be read.
 SessionResults ReadSessionResults(const store::Session& session);
 
 }  // namespace recon::cli

@@ -161,6 +161,20 @@ void AddRollouts(const SessionResults& results, report::SessionReport& r) {
   }
 }
 
+void AddRealTrials(const SessionResults& results, report::SessionReport& r) {
+  for (const auto& [method, checked] : results.trials) {
+    const store::RealTrialLog& log = checked.record;
+    report::SessionReport::RealTrials trials;
+    trials.label = log.label;
+    trials.successes = log.successes();
+    trials.out_of_date = checked.out_of_date;
+    for (const store::RealTrial& t : log.trials) {
+      trials.trials.push_back({t.number, t.succeeded, t.stopped, t.reason, t.steps, t.seconds});
+    }
+    r.real_trials.push_back(trials);
+  }
+}
+
 void AddLedger(const json& ledger, report::SessionReport& r) {
   const int demos = ledger["demonstrations"].get<int>();
   const double demo_s = ledger["demonstrations_s"].get<double>();
@@ -194,6 +208,7 @@ report::SessionReport BuildSessionReport(const store::Session& session,
   AddBeaconTraces(session, episode, r);
   AddCalibration(session, r);
   AddRollouts(results, r);
+  AddRealTrials(results, r);
   AddLedger(info["teaching_time"], r);
   return r;
 }

@@ -15,6 +15,11 @@ std::unique_ptr<worlds::World> MakeSessionWorld(const store::SessionManifest& ma
                     "'), which RECON Studio cannot simulate: train on it, but roll out on the "
                     "cell it came from");
   }
+  return MakeSimulatedTaskWorld(manifest, placement);
+}
+
+std::unique_ptr<worlds::World> MakeSimulatedTaskWorld(const store::SessionManifest& manifest,
+                                                      const std::string& placement) {
   worlds::CellResources cell;
   if (worlds::WorldNeedsRenderer(manifest.world)) {
     cell.renderer_factory = render::MujocoRendererFactory();

@@ -15,6 +15,11 @@ namespace recon::cli {
 /// beacons are removed). UserError for sessions that have no simulated world (imported ones).
 std::unique_ptr<worlds::World> MakeSessionWorld(const store::SessionManifest& manifest,
                                                 const std::string& placement);
+/// The simulated world of the session's task whatever cell taught it, without MakeSessionWorld's
+/// check: where the test plan's scenes put the objects, which a real cell's trials set up by
+/// hand (World::ObjectLayout). Not a stand-in for a real cell's dynamics or camera.
+std::unique_ptr<worlds::World> MakeSimulatedTaskWorld(const store::SessionManifest& manifest,
+                                                      const std::string& placement);
 
 /// The options that describe a new session's cell (`recon record`, `recon session repair`).
 /// Empty strings and absent numbers take the world's defaults.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -106,8 +107,12 @@ class CellSource {
     return std::nullopt;
   }
   virtual void StopGuidedCalibration() {}
-  /// Empty when the Rollouts step can run here; otherwise why not.
-  virtual std::string CannotRollOut() const = 0;
+  /// Whether trained policies can be tried on a real arm here (StartTrials): a real cell's.
+  virtual bool RunsTrials() const { return false; }
+  /// Where the live camera sees the table point `p` (table frame), where the cell knows.
+  virtual std::optional<std::array<float, 2>> TablePixel(const Eigen::Vector3d& /*p*/) const {
+    return std::nullopt;
+  }
 };
 
 }  // namespace recon::studio

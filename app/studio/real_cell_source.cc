@@ -46,10 +46,20 @@ std::unique_ptr<worlds::World> RealCellSource::MakeWorld(const store::SessionMan
   return cell::MakeRealCellWorld(*cell_, std::move(options));
 }
 
-Eigen::Vector3d RealCellSource::GripPoint() const {
+std::optional<devices::JointState> RealCellSource::ArmState() const {
+  if (cell_->arm() == nullptr) return std::nullopt;
+  try {
+    return cell_->arm()->State();
+  } catch (const UserError&) {
+    return std::nullopt;  // the arm is gone: its device row says so, the screens go on
+  }
+}
+
+std::optional<Eigen::Vector3d> RealCellSource::GripPoint() const {
   // The point the envelope keeps above the table, in the table frame: what the teacher steers.
-  const safety::GuardedArm* arm = cell_->arm();
-  return arm->envelope().ToolPoint(arm->State().position_rad);
+  const std::optional<devices::JointState> state = ArmState();
+  if (!state) return std::nullopt;
+  return cell_->arm()->envelope().ToolPoint(state->position_rad);
 }
 
 bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
@@ -57,17 +67,16 @@ bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
                               ui::StudioSnapshot& s) {
   const store::SessionManifest& manifest = session.manifest();
   const bool reading_in_table = !manifest.calibration_file.empty();
-  const std::shared_ptr<const devices::CameraFrame> frame = cell_->LatestFrame();
+  std::shared_ptr<const devices::CameraFrame> frame;
+  try {
+    frame = cell_->LatestFrame();
+  } catch (const UserError&) {
+    // Capture is failing (the camera row says why): the last frame shown stays.
+  }
   if (frame) {
     s.camera = frame->image;
     s.camera_frame = static_cast<uint64_t>(frame->sequence) + 1;
   }
-  const auto& pose = cell_->camera_pose();
-  const auto pixel = [&](const Eigen::Vector3d& p) -> std::optional<std::array<float, 2>> {
-    if (!pose) return std::nullopt;
-    const Eigen::Vector2d px = pose->camera.Project(p);
-    return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
-  };
   for (const char* object : {"plate", "bowl", "toast"}) {
     ui::ObjectView view;
     view.name = object;
@@ -76,21 +85,24 @@ bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
   }
   for (const BeaconSpec& b : manifest.beacons) {
     ui::BeaconView view = BeaconViewOf(b, manifest, reading);
-    if (reading_in_table && reading.size() == 2) view.pixel = pixel({reading[0], reading[1], 0.0});
+    if (reading_in_table && reading.size() == 2) {
+      view.pixel = TablePixel({reading[0], reading[1], 0.0});
+    }
     s.beacons.push_back(view);
   }
-  if (cell_->arm() != nullptr) {
-    if (auto px = pixel(GripPoint())) s.grip_pixel = *px;
+  if (const std::optional<Eigen::Vector3d> grip = GripPoint()) {
+    if (auto px = TablePixel(*grip)) s.grip_pixel = *px;
   }
-  return true;
+  return frame != nullptr;
 }
 
 void RealCellSource::ShowArm(const worlds::World&, ui::StudioSnapshot& s) const {
-  if (cell_->arm() == nullptr) return;
-  const Eigen::Vector3d grip = GripPoint();
+  const std::optional<devices::JointState> state = ArmState();
+  if (!state) return;
+  const Eigen::Vector3d grip = cell_->arm()->envelope().ToolPoint(state->position_rad);
   s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
               static_cast<float>(grip.z())};
-  s.gripper_closed = cell_->arm()->State().gripper_opening < 0.5;
+  s.gripper_closed = state->gripper_opening < 0.5;
   // A real gripper here reports its opening only: closed, it may or may not hold the toast.
   s.grip.state = s.gripper_closed ? ui::GripState::kUnknown : ui::GripState::kOpen;
 }
@@ -124,8 +136,9 @@ void RealCellSource::ShowSafety(const worlds::World*, ui::SafetyView& view) cons
 Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
                                                ViewSize, const worlds::OrbitCamera&,
                                                double speed_m_s) const {
-  if (cell_->camera_pose() && cell_->arm() != nullptr) {
-    return studio::TeleopVelocity(cell_->camera_pose()->camera, GripPoint(), input, speed_m_s);
+  const std::optional<Eigen::Vector3d> grip = GripPoint();
+  if (cell_->camera_pose() && grip) {
+    return studio::TeleopVelocity(cell_->camera_pose()->camera, *grip, input, speed_m_s);
   }
   Eigen::Vector3d velocity(input.screen_right, input.screen_up, input.raise);
   if (velocity.head<2>().norm() > 1.0) velocity.head<2>().normalize();
@@ -232,9 +245,11 @@ std::optional<calib::CalibrationReport> RealCellSource::StepGuidedCalibration(
   return done->Fit();
 }
 
-std::string RealCellSource::CannotRollOut() const {
-  return "rollouts on a real arm are not run from the studio yet: the policies are trained; roll "
-         "them out in the simulated cell's sessions";
+std::optional<std::array<float, 2>> RealCellSource::TablePixel(const Eigen::Vector3d& p) const {
+  const auto& pose = cell_->camera_pose();
+  if (!pose) return std::nullopt;
+  const Eigen::Vector2d px = pose->camera.Project(p);
+  return std::array<float, 2>{static_cast<float>(px.x()), static_cast<float>(px.y())};
 }
 
 }  // namespace recon::studio

@@ -67,12 +67,16 @@ class RealCellSource final : public CellSource {
   void StartGuidedCalibration(int points) override;
   std::optional<calib::CalibrationReport> StepGuidedCalibration(ui::CalibrationView& view) override;
   void StopGuidedCalibration() override { guided_.reset(); }
-  std::string CannotRollOut() const override;
+  bool RunsTrials() const override { return cell_->arm() != nullptr; }
+  /// Through the located camera; none without its pose.
+  std::optional<std::array<float, 2>> TablePixel(const Eigen::Vector3d& p) const override;
 
  private:
   std::unique_ptr<worlds::World> MakeWorld(const store::SessionManifest& manifest,
                                            const std::string& calibration_path);
-  Eigen::Vector3d GripPoint() const;
+  /// The arm's state; none without an arm or while it is gone.
+  std::optional<devices::JointState> ArmState() const;
+  std::optional<Eigen::Vector3d> GripPoint() const;
 
   std::unique_ptr<cell::RealCell> cell_;
   std::unique_ptr<cell::GuidedCalibration> guided_;

@@ -174,6 +174,18 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     view.out_of_date = rollouts->second.out_of_date;
     s.rollouts.push_back(view);
   }
+  for (const auto& [method, checked] : results.trials) {
+    const store::RealTrialLog& log = checked.record;
+    ui::RealTrialsView view;
+    view.method = method;
+    view.label = log.label;
+    view.successes = log.successes();
+    for (const store::RealTrial& t : log.trials) {
+      view.trials.push_back({t.number, t.succeeded, t.stopped, t.reason, t.frames.has_value()});
+    }
+    view.out_of_date = checked.out_of_date;
+    s.real_trials.push_back(view);
+  }
   return s;
 }
 

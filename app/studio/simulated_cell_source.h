@@ -46,8 +46,6 @@ class SimulatedCellSource final : public CellSource {
   void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
   void EmergencyStop(bool, const std::string&) override {}
 
-  std::string CannotRollOut() const override { return ""; }
-
  private:
   worlds::SceneRenderer& renderer_;
   uint64_t frames_ = 0;          ///< live frames rendered so far

@@ -5,6 +5,7 @@
 
 #include "app/studio/real_cell_source.h"
 #include "app/studio/simulated_cell_source.h"
+#include "app/studio/trial_run.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
 #include "engine/teach/session_setup.h"
@@ -153,6 +154,8 @@ void StudioCell::Tick() {
       ShowPlaySample();
       if (!play_->recording()) CommitPlayChunk();
     }
+  } else if (TrialMoving()) {
+    TickTrial(now);
   } else if (calibrating_) {
     StepCalibration();  // it reads the beacons itself
   } else if (world_ && now >= next_beacon_) {
@@ -167,10 +170,12 @@ void StudioCell::Tick() {
   ApplyFinishedJob();
 }
 
-bool StudioCell::Busy() const { return Driving() || calibrating_ || jobs_.Running(); }
+bool StudioCell::Busy() const {
+  return Driving() || calibrating_ || trial_ != nullptr || jobs_.Running();
+}
 
 bool StudioCell::Driving() const {
-  return (recorder_ && recorder_->recording()) || (play_ && play_->recording());
+  return (recorder_ && recorder_->recording()) || (play_ && play_->recording()) || TrialMoving();
 }
 
 void StudioCell::AddError(const std::string& error) {

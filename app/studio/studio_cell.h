@@ -14,6 +14,7 @@
 #include "app/studio/recent_sessions.h"
 #include "app/studio/rollout_playback.h"
 #include "app/studio/studio_config.h"
+#include "engine/store/real_trials.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
 #include "engine/teach/play_recorder.h"
@@ -27,6 +28,8 @@
 #include "ui/studio/studio_snapshot.h"
 
 namespace recon::studio {
+
+struct TrialRun;
 
 /// Everything the studio's cell thread owns: the session, the cell (simulated or real, through
 /// CellSource), its world, the recorders, the jobs. It applies the UI's commands
@@ -149,6 +152,26 @@ class StudioCell {
   void Apply(const ui::SetTeacherView& c);
   void Apply(const ui::ToggleGripper& c);
 
+  // Trials on a real arm (studio_cell_trials.cc).
+  void Apply(const ui::StartTrials& c);
+  void Apply(const ui::RunTrial& c);
+  void Apply(const ui::StopTrial& c);
+  void Apply(const ui::JudgeTrial& c);
+  void Apply(const ui::EndTrials& c);
+  void Apply(const ui::ShowTrialFrame& c);
+  /// Shows trial `number`'s layout (the test plan's scene number - 1) for the teacher to set up.
+  void SetUpTrial(int number);
+  /// The countdown, then one policy step per control period; the verdict once its time is up.
+  void TickTrial(Clock::time_point now);
+  /// A fault or the e-stop during a trial: the arm stops, the trial is not kept, and the same
+  /// trial waits to be set up and run again.
+  void AbortTrial(const std::string& why);
+  /// Stops the arm where it is (a real cell's world Reset), whether or not it is still there.
+  void HoldArm();
+  /// A trial is counting down or running.
+  bool TrialMoving() const;
+  void ShowTrial(ui::StudioSnapshot& s) const;
+
   StudioOptions options_;
   RecentSessions recent_;
   bool picking_session_ = false;
@@ -201,6 +224,9 @@ class StudioCell {
   std::string pending_take_;
   std::string estop_reason_;
   DeviceScanner scanner_;
+  std::unique_ptr<TrialRun> trial_;
+  ui::TrialPlaybackView trial_playback_;
+  store::TrialFrames trial_frames_;  ///< the frames of the trial played back
 };
 
 }  // namespace recon::studio

@@ -238,7 +238,6 @@ void StudioCell::Apply(const ui::CancelRollouts&) { jobs_.Cancel(); }
 void StudioCell::Apply(const ui::RunRollouts& c) {
   RequireIdle("roll out");
   RequireNoEmergencyStop("roll out");
-  if (std::string why = source_->CannotRollOut(); !why.empty()) throw UserError(why);
   const int tests = c.tests > 0 ? c.tests : options_.rollout_tests;
   jobs_.Start(JobKind::kRollouts, [this, tests](JobThread& jobs) -> std::function<void()> {
     std::string said = RollOutTrainedMethods(jobs, *session_, tests);
@@ -302,6 +301,10 @@ void StudioCell::Apply(const ui::EmergencyStop& c) {
     pending_take_ =
         "The e-stop stopped the take after " + std::to_string(recorder_->samples()) + " samples";
     stopped = "; the take so far is set aside: keep it (as not done) or discard it";
+  }
+  if (TrialMoving()) {
+    AbortTrial("the e-stop (" + estop_reason_ + ")");
+    stopped = "; the trial under way was stopped and not kept";
   }
   if (play_ && play_->recording()) {
     stopped = "; play recording stopped (" + std::to_string(play_done_) + " samples kept)";

@@ -88,10 +88,13 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s.busy_with = s.recording           ? "the recording"
                 : s.recording_play    ? "the play data recording"
                 : calibrating_        ? "the calibration"
+                : trial_              ? "the trials"
                 : jobs_.RunningKind() ? std::string("the ") + JobKindName(*jobs_.RunningKind())
                                       : "";
   s.rollout_tests = options_.rollout_tests;
   ShowPlayback(s);
+  ShowTrial(s);
+  s.trial_playback = trial_playback_;
   if (!report_path_.empty()) s.report_path = report_path_;  // else the session view's
   s.errors = errors_;
   s.status = job.running ? std::string("Running ") + JobKindName(*job.kind) + "..." : status_;

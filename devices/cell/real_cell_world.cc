@@ -61,7 +61,7 @@ std::vector<float> AreaAveragedChannelsFirst(const RgbImage& image, int size) {
         for (int ch = 0; ch < 3; ++ch) sum[ch] += w * in[ch];
       }
       for (int ch = 0; ch < 3; ++ch) {
-        y[ch * plane + static_cast<size_t>(r) * size + c] = static_cast<float>(sum[ch]);
+        y[ch * plane + static_cast<size_t>(r) * size + c] = static_cast<float>(std::round(sum[ch]));
       }
     }
   }

@@ -107,8 +107,8 @@ class RealCellWorld : public worlds::World {
 };
 
 /// Resizes `image` to size x size by area averaging (each output pixel is the mean of the input
-/// area it covers, partial pixels weighted) and lays it out as Tabletop's y: channels first,
-/// 0-255 floats.
+/// area it covers, partial pixels weighted, rounded to the nearest level) and lays it out as
+/// Tabletop's y: channels first, whole 0-255 values (a session stores images as 8 bits).
 std::vector<float> AreaAveragedChannelsFirst(const RgbImage& image, int size);
 
 }  // namespace recon::cell

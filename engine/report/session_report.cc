@@ -268,7 +268,8 @@ Part Rollouts(const SessionReport& report, FigureFiles& figures) {
     return part;
   }
   part.status = Count(report.rollouts.size(), "policy", "policies");
-  part.body = "<p>Each trained policy was rolled out with the beacons removed.</p>\n";
+  part.body =
+      "<p>Each trained policy was rolled out in the simulated cell with the beacons removed.</p>\n";
   for (const auto& rollout : report.rollouts) {
     part.body += OutOfDate(rollout.label + " rollouts", rollout.out_of_date);
   }
@@ -300,6 +301,36 @@ Part Rollouts(const SessionReport& report, FigureFiles& figures) {
   part.body += HtmlTable(
       {"Policy", "Metric", "Mean \u00b1 SEM", "Better", "Tests", "Success", "Details", "Note"},
       rows, {2, 4, 5});
+  return part;
+}
+
+Part RealTrialsPart(const SessionReport& report) {
+  Part part{"real-trials", "Trials on the real arm", "", ""};
+  size_t trials = 0;
+  for (const auto& method : report.real_trials) trials += method.trials.size();
+  part.status = Count(trials, "trial", "trials");
+  part.body =
+      "<p>Each trial: a person set the test scene's layout up, the policy drove the arm with the "
+      "beacons removed, and the person judged it.</p>\n";
+  Rows summary, rows;
+  for (const auto& method : report.real_trials) {
+    part.body += OutOfDate(method.label + " trials", method.out_of_date);
+    const double rate =
+        method.trials.empty() ? 0.0 : double(method.successes) / method.trials.size();
+    summary.push_back(
+        {Text(method.label),
+         std::to_string(method.successes) + " of " + std::to_string(method.trials.size()),
+         Percent(rate)});
+    for (const auto& t : method.trials) {
+      rows.push_back({Text(method.label), std::to_string(t.number),
+                      t.succeeded ? "success" : "failure", Text(t.reason),
+                      t.stopped ? "stopped by the person" : "ran its time", std::to_string(t.steps),
+                      Seconds(t.seconds)});
+    }
+  }
+  part.body += HtmlTable({"Policy", "Succeeded", "Success"}, summary, {1, 2});
+  part.body +=
+      HtmlTable({"Policy", "Trial", "Verdict", "Why", "End", "Steps", "Time"}, rows, {1, 5, 6});
   return part;
 }
 
@@ -381,6 +412,7 @@ std::vector<std::string> WriteSessionReport(const SessionReport& report,
   parts.push_back(Beacons(report, figures));
   parts.push_back(CalibrationPart(report, figures));
   parts.push_back(Rollouts(report, figures));
+  if (!report.real_trials.empty()) parts.push_back(RealTrialsPart(report));
   parts.push_back(TeachingTime(report, figures));
   const std::string html_path = (std::filesystem::path(out_dir) / "report.html").string();
   WriteFileAtomically(html_path, Page(report, parts));

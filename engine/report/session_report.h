@@ -67,6 +67,22 @@ struct SessionReport {
   };
   std::vector<Rollout> rollouts;
 
+  /// A method's trials on a real arm (a real cell's Rollouts step), judged by the person.
+  struct RealTrials {
+    std::string label;
+    struct Trial {
+      int number = 0;
+      bool succeeded = false, stopped = false;
+      std::string reason;
+      int steps = 0;
+      double seconds = 0;
+    };
+    std::vector<Trial> trials;
+    int successes = 0;
+    std::string out_of_date;  ///< why they are not of the method's current model; "" if they are
+  };
+  std::vector<RealTrials> real_trials;
+
   /// Teaching time of one way of teaching the task, in seconds.
   struct LedgerRow {
     std::string label;  ///< "Baseline (4 demos)", "RECON (Play)"

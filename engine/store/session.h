@@ -139,10 +139,15 @@ class Session {
   static std::string TrainingRecordRelativePath(const std::string& method);
   static std::string RolloutSummaryRelativePath(const std::string& method);
   static std::string RolloutReplayRelativePath(const std::string& method);
+  /// A method's trials on a real arm (real_trials.h) and the camera frames of trial `number`.
+  std::string RealTrialsPath(const std::string& method) const;
+  std::string TrialFramesPath(const std::string& method, int number) const;
+  static std::string TrialFramesRelativePath(const std::string& method, int number);
   /// The folders holding them.
   static constexpr char kCheckpointFolder[] = "checkpoints";
   static constexpr char kTrainingFolder[] = "training";
   static constexpr char kRolloutFolder[] = "rollouts";
+  static constexpr char kTrialFolder[] = "trials";
   /// Where the session's own report goes (`recon report`, the studio) and its page in there:
   /// report/report.html.
   std::string ReportFolder() const;

@@ -39,6 +39,20 @@ std::string Session::RolloutReplayPath(const std::string& method) const {
   return Path(RolloutReplayRelativePath(method));
 }
 
+std::string Session::RealTrialsPath(const std::string& method) const {
+  return Path((std::filesystem::path(kTrialFolder) / (method + ".json")).string());
+}
+
+std::string Session::TrialFramesRelativePath(const std::string& method, int number) {
+  return (std::filesystem::path(kTrialFolder) / method /
+          ("trial_" + std::to_string(number) + ".h5"))
+      .string();
+}
+
+std::string Session::TrialFramesPath(const std::string& method, int number) const {
+  return Path(TrialFramesRelativePath(method, number));
+}
+
 std::string Session::ReportFolder() const { return Path("report"); }
 
 std::string Session::ReportPath() const {

@@ -377,6 +377,16 @@ void Tabletop::ShowReplayState(const std::vector<double>& state) {
   Render();
 }
 
+std::map<std::string, std::array<double, 2>> Tabletop::ObjectLayout() const {
+  std::map<std::string, std::array<double, 2>> layout;
+  for (const auto& [name, p] :
+       {std::pair{"plate", PlatePosition()}, std::pair{"bowl", BowlPosition()},
+        std::pair{"toast", ToastPosition()}}) {
+    layout[name] = {p.x(), p.y()};
+  }
+  return layout;
+}
+
 double Tabletop::ToastToBowlDistance() const {
   return PlanarDistance(ToastPosition(), BowlPosition());
 }

@@ -106,6 +106,8 @@ class Tabletop : public World {
   /// some point), "closest_approach_m" (of the grip point to the toast before a grasp) and
   /// "closes_on_nothing" (the gripper shut without the toast before any grasp).
   std::map<std::string, double> OutcomeDetails() const override;
+  /// The plate, the bowl and the toast.
+  std::map<std::string, std::array<double, 2>> ObjectLayout() const override;
   /// The pose the current camera image shows, valid after Reset and Step: MuJoCo's qpos (arm
   /// joints, fingers, the toast's free joint) as the frame was rendered from it, then the mocap
   /// bodies' (plate with its beacon, bowl) positions (3 each) and quaternions (4 each).

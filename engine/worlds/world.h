@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -93,6 +94,9 @@ class World {
   /// scenarios in the experiment summary (e.g. tabletop's "toast_moved": 1 if the toast left its
   /// pick-up place). Empty by default.
   virtual std::map<std::string, double> OutcomeDetails() const { return {}; }
+  /// Where the scene's movable objects stand (table x, y in metres), by name: what a person sets
+  /// up to give a real cell this scene. Empty where the world has no such objects (the default).
+  virtual std::map<std::string, std::array<double, 2>> ObjectLayout() const { return {}; }
   /// True when a policy is scored by its action error along the expert's own demonstration of
   /// each test scenario (the paper's BinTransfer metric: action MSE against the expert) instead
   /// of by the outcome of its own rollout.

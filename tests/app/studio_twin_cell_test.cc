@@ -11,7 +11,9 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <mutex>
 #include <thread>
 
@@ -22,6 +24,7 @@
 #include "devices/uwb/fake_dwm1001.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/rng.h"
+#include "engine/store/real_trials.h"
 #include "engine/store/session.h"
 
 namespace recon::studio {
@@ -80,6 +83,16 @@ class TwinBeacon {
     silent_ = silent;
   }
   const std::string& port() const { return fake_->port(); }
+  /// A calibration that knows the hidden frame (what a good calibration recovers).
+  calib::CalibrationReport Calibration() const {
+    std::vector<calib::CalibrationPoint> points;
+    for (const Eigen::Vector3d& p :
+         {Eigen::Vector3d(0.3, -0.3, 0.02), Eigen::Vector3d(0.8, -0.2, 0.02),
+          Eigen::Vector3d(0.7, 0.3, 0.02), Eigen::Vector3d(0.4, 0.25, 0.02)}) {
+      points.push_back({p, hidden_.Apply(p)});
+    }
+    return calib::Calibrate(points);
+  }
 
  private:
   const calib::RigidTransform hidden_{Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()).matrix(),
@@ -231,6 +244,161 @@ TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
       store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
   EXPECT_TRUE(session.manifest().calibration_file.empty());
   EXPECT_FALSE(fs::exists(dir_ / "session" / "calibration.new.json"));
+}
+
+TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJudgedOne) {
+  calib::SaveCalibration(beacon_->Calibration(), (dir_ / "cal.json").string());
+  StudioOptions options = Options();
+  options.calibration_file = (dir_ / "cal.json").string();
+  options.train_steps = 20;
+  StudioController controller(options);
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
+  controller.Push(ui::AssignBeacon{"plate", "plate"});
+  // Two keyboard demonstrations: the arm moves up the screen, then is kept.
+  for (int take = 0; take < 2; ++take) {
+    controller.Push(ui::StartRecording{});
+    s = WaitFor(controller, [](const auto& now) { return now.recording; });
+    ui::TeleopInput up;
+    up.screen_up = 1;
+    controller.Push(up);
+    s = WaitFor(controller, [](const auto& now) { return now.recording_samples >= 8; });
+    controller.Push(ui::TeleopInput{});
+    controller.Push(ui::StopRecording{});
+    s = WaitFor(controller, [&](const auto& now) {
+      return !now.recording && now.episodes.size() == static_cast<size_t>(take + 1);
+    });
+  }
+  // Trials need a trained model.
+  controller.Push(ui::StartTrials{"baseline", 2});
+  s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+  EXPECT_THAT(s.errors.back(), HasSubstr("train baseline first"));
+  controller.Push(ui::DismissErrors{});
+  controller.Push(ui::StartTraining{{"baseline"}, 0});
+  s = WaitFor(
+      controller,
+      [](const auto& now) {
+        return !now.training_running && !now.training.empty() && now.training[0].done;
+      },
+      120);
+
+  controller.Push(ui::StartTrials{"baseline", 2});
+  s = WaitFor(controller,
+              [](const auto& now) { return now.trial.phase == ui::TrialPhase::kSetUp; });
+  EXPECT_EQ(s.trial.number, 1);
+  EXPECT_EQ(s.trial.last, 2);
+  EXPECT_EQ(s.busy_with, "the trials");
+  // The layout to set up: the test plan's first scene, each object where the camera sees it.
+  ASSERT_EQ(s.trial.layout.size(), 3u);
+  const tags::PinholeCamera camera = scene_.TopCamera(1280, 960);
+  for (const ui::TrialView::Object& o : s.trial.layout) {
+    ASSERT_TRUE(o.pixel.has_value()) << o.name;
+    const Eigen::Vector2d expected = camera.Project({o.table_m[0], o.table_m[1], 0.0});
+    EXPECT_NEAR((*o.pixel)[0], expected.x(), 3.0) << o.name;
+    EXPECT_NEAR((*o.pixel)[1], expected.y(), 3.0) << o.name;
+  }
+  const auto set_up = [&](const ui::TrialView& trial) {
+    for (const ui::TrialView::Object& o : trial.layout) {
+      Eigen::Vector2d& place = o.name == "plate"  ? layout_.plate
+                               : o.name == "bowl" ? layout_.bowl
+                                                  : layout_.toast;
+      place = {o.table_m[0], o.table_m[1]};
+    }
+    PutPlate(layout_.plate.x(), layout_.plate.y());
+  };
+  // Trial 1: set up, run, stopped by the person after a few steps, judged a success.
+  set_up(s.trial);
+  const int64_t commands = robot_->commands_received();
+  controller.Push(ui::RunTrial{});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kRunning && now.trial.step >= 5;
+  });
+  controller.Push(ui::StopTrial{});
+  s = WaitFor(controller,
+              [](const auto& now) { return now.trial.phase == ui::TrialPhase::kJudge; });
+  EXPECT_TRUE(s.trial.stopped);
+  const int trial_one_steps = s.trial.step;
+  EXPECT_GT(robot_->commands_received(), commands + 5);  // the policy drove the real path
+  controller.Push(ui::JudgeTrial{true, ""});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kSetUp && now.trial.number == 2;
+  });
+  ASSERT_EQ(s.real_trials.size(), 1u);
+  EXPECT_EQ(s.real_trials[0].successes, 1);
+
+  // Trial 2: the e-stop mid-trial stops it, unjudged and not kept; run again, judged a failure.
+  set_up(s.trial);
+  controller.Push(ui::RunTrial{});
+  s = WaitFor(controller, [](const auto& now) { return now.trial.step >= 3; });
+  controller.Push(ui::EmergencyStop{true, "test"});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kSetUp && !now.trial.message.empty();
+  });
+  EXPECT_THAT(s.trial.message, HasSubstr("the e-stop (test)"));
+  EXPECT_THAT(s.trial.message, HasSubstr("not kept"));
+  EXPECT_EQ(s.trial.number, 2);
+  controller.Push(ui::RunTrial{});  // refused while the e-stop holds
+  s = WaitFor(controller, [](const auto& now) {
+    return !now.errors.empty() && now.errors.back().find("e-stop is engaged") != std::string::npos;
+  });
+  controller.Push(ui::EmergencyStop{false, ""});
+  controller.Push(ui::RunTrial{});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kRunning && now.trial.step >= 3;
+  });
+  controller.Push(ui::StopTrial{});
+  s = WaitFor(controller,
+              [](const auto& now) { return now.trial.phase == ui::TrialPhase::kJudge; });
+  controller.Push(ui::JudgeTrial{false, "missed the toast"});
+  s = WaitFor(controller, [](const auto& now) { return now.trial.phase == ui::TrialPhase::kNone; });
+  EXPECT_THAT(s.status, HasSubstr("Trials done"));
+
+  // In the session: both judged trials with their verdicts and the frames the policy saw.
+  const store::Session session =
+      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
+  const std::optional<store::RealTrialLog> log = store::ReadRealTrialLog(session, "baseline");
+  ASSERT_TRUE(log.has_value());
+  ASSERT_EQ(log->trials.size(), 2u);
+  EXPECT_TRUE(log->trials[0].succeeded);
+  EXPECT_TRUE(log->trials[0].stopped);
+  EXPECT_EQ(log->trials[0].steps, trial_one_steps);
+  EXPECT_FALSE(log->trials[1].succeeded);
+  EXPECT_EQ(log->trials[1].reason, "missed the toast");
+  EXPECT_EQ(log->cell, "real");
+  ASSERT_TRUE(log->trials[0].frames.has_value());
+  const store::TrialFrames frames =
+      store::ReadTrialFrames((fs::path(session.dir()) / *log->trials[0].frames).string());
+  EXPECT_EQ(static_cast<int>(frames.y.size()), trial_one_steps);
+  EXPECT_EQ(frames.y[0].size(), 3u * 64 * 64);
+  EXPECT_EQ(frames.u[0].size(), 7u);
+  controller.Push(ui::ShowTrialFrame{"baseline", 1, 2});
+  s = WaitFor(controller, [](const auto& now) { return now.trial_playback.frame == 2; });
+  EXPECT_EQ(s.trial_playback.frames, trial_one_steps);
+  EXPECT_EQ(s.trial_playback.image.width, 64);
+
+  // The report has them, and a third trial whose arm goes away is not kept.
+  controller.Push(ui::WriteReport{});
+  s = WaitFor(controller, [](const auto& now) { return !now.report_path.empty(); });
+  std::ifstream report(s.report_path);
+  const std::string html((std::istreambuf_iterator<char>(report)),
+                         std::istreambuf_iterator<char>());
+  EXPECT_THAT(html, HasSubstr("Trials on the real arm"));
+  EXPECT_THAT(html, HasSubstr("1 of 2"));
+  EXPECT_THAT(html, HasSubstr("missed the toast"));
+  controller.Push(ui::StartTrials{"baseline", 1});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kSetUp && now.trial.number == 3;
+  });
+  controller.Push(ui::RunTrial{});
+  s = WaitFor(controller, [](const auto& now) { return now.trial.step >= 2; });
+  robot_.reset();  // the arm's controller goes away mid-trial
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kSetUp && !now.trial.message.empty();
+  });
+  EXPECT_THAT(s.trial.message, HasSubstr("Trial 3 stopped"));
+  controller.Push(ui::EndTrials{});
+  s = WaitFor(controller, [](const auto& now) { return now.trial.phase == ui::TrialPhase::kNone; });
+  ASSERT_EQ(s.real_trials.size(), 1u);
+  EXPECT_EQ(s.real_trials[0].trials.size(), 2u);
 }
 
 }  // namespace

@@ -412,16 +412,17 @@ TEST_F(RealCellTest, DevicesThatCannotBeOpenedAreNamed) {
 
 TEST(AreaAverageTest, EachOutputPixelIsTheMeanOfTheAreaItCovers) {
   // 3 x 3 grey levels 0..8 (one channel repeated) down to 2 x 2: each output covers 1.5 x 1.5
-  // input pixels, the middle row and column half.
+  // input pixels, the middle row and column half; the mean is rounded to a whole level, as a
+  // session stores images in 8 bits.
   RgbImage image{3, 3, {}};
   for (int v = 0; v < 9; ++v)
     image.rgb.insert(image.rgb.end(), {uint8_t(v), uint8_t(v), uint8_t(v)});
   const std::vector<float> y = AreaAveragedChannelsFirst(image, 2);
   ASSERT_EQ(y.size(), 12u);
-  // Top-left: (0 + 0.5*1 + 0.5*3 + 0.25*4) / 2.25.
-  EXPECT_NEAR(y[0], (0 + 0.5 * 1 + 0.5 * 3 + 0.25 * 4) / 2.25, 1e-5);
-  // Bottom-right: (0.25*4 + 0.5*5 + 0.5*7 + 8) / 2.25.
-  EXPECT_NEAR(y[3], (0.25 * 4 + 0.5 * 5 + 0.5 * 7 + 8) / 2.25, 1e-5);
+  // Top-left: (0 + 0.5*1 + 0.5*3 + 0.25*4) / 2.25 = 1.33.
+  EXPECT_EQ(y[0], 1.0f);
+  // Bottom-right: (0.25*4 + 0.5*5 + 0.5*7 + 8) / 2.25 = 6.67.
+  EXPECT_EQ(y[3], 7.0f);
   EXPECT_EQ(y[4 + 3], y[3]) << "every channel alike";
   // Upsampling copies: a 1 x 1 image becomes a flat 16 x 16 one.
   const std::vector<float> flat = AreaAveragedChannelsFirst(RgbImage{1, 1, {7, 8, 9}}, 16);

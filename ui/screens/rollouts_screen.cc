@@ -105,6 +105,11 @@ void DrawPlayback(const ScreenContext& context) {
 void DrawRolloutsScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Rollouts", teach::StepPurpose(teach::Step::kRollouts));
+  if (s.cell_kind == "real") {
+    DrawTrialsPanel(context);
+    DrawPlayback(context);  // a session taught in the simulated cell before, if any
+    return;
+  }
   if (s.rollouts_running) {
     if (Button(s.rollouts_cancelling ? "Cancelling...##cancel-rollouts" : "Cancel rollouts",
                !s.rollouts_cancelling, "the rollouts stop at their next step")) {

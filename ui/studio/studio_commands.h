@@ -113,13 +113,40 @@ struct EmergencyStop {
 /// Looks for plugged-in devices now instead of at the next periodic scan.
 struct RescanDevices {};
 
+/// Trials of a trained policy on a real arm (a real cell's Rollouts step), a lab's protocol: the
+/// screen shows the next test layout, the teacher sets it up and runs the trial, the policy runs
+/// through the safety envelope until its time is up or the teacher stops it, the teacher judges
+/// it, and the next one follows.
+struct StartTrials {
+  std::string method;  ///< "baseline" or "recon"
+  int trials = 0;      ///< how many; 0: the studio's --rollout-tests
+};
+/// The layout is set up: run the trial (after the countdown).
+struct RunTrial {};
+/// Stops the policy now (the arm stops); a running trial is then judged as it stands.
+struct StopTrial {};
+/// The teacher's verdict on the trial that just ran, and why.
+struct JudgeTrial {
+  bool succeeded = false;
+  std::string reason;
+};
+/// No more trials now; the judged ones stay in the session.
+struct EndTrials {};
+/// Shows frame `frame` of a judged trial's camera frames (what its policy saw).
+struct ShowTrialFrame {
+  std::string method;
+  int number = 0;
+  int frame = 0;
+};
+
 using StudioCommand =
     std::variant<OpenStep, AssignBeacon, StartCalibration, CancelCalibration, StartRecording,
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
-                 UndoDelete, OpenReport, SetTeacherView, ToggleGripper>;
+                 UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
+                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

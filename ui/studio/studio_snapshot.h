@@ -153,6 +153,58 @@ struct TrainingView {
   std::string out_of_date;
 };
 
+/// Where a trial on a real arm stands (StartTrials).
+enum class TrialPhase {
+  kNone,       ///< no trials under way
+  kSetUp,      ///< the teacher sets the layout up, then runs the trial
+  kCountdown,  ///< the policy starts when it ends
+  kRunning,    ///< the policy drives the arm
+  kJudge,      ///< it ended: the teacher says whether it succeeded
+};
+
+/// The trial protocol as the Rollouts screen of a real cell shows it.
+struct TrialView {
+  TrialPhase phase = TrialPhase::kNone;
+  std::string method, label;
+  int number = 0;           ///< the trial's number in its method's log (1, 2, ...)
+  int first = 0, last = 0;  ///< the trials of this run
+  uint64_t scene_seed = 0;  ///< the test scene whose layout is set up
+  struct Object {
+    std::string name;
+    std::array<float, 2> table_m{0, 0};
+    std::optional<std::array<float, 2>> pixel;  ///< where it goes in the live camera image
+  };
+  std::vector<Object> layout;
+  double countdown_s = 0;
+  int step = 0, max_steps = 0;
+  bool stopped = false;  ///< the teacher stopped it (kJudge)
+  std::string message;   ///< what happened to the last trial (a fault, the e-stop), if anything
+};
+
+/// A method's judged trials on a real arm, from the session.
+struct RealTrialsView {
+  std::string method, label;
+  int successes = 0;
+  struct Row {
+    int number = 0;
+    bool succeeded = false;
+    bool stopped = false;
+    std::string reason;
+    bool has_frames = false;
+  };
+  std::vector<Row> trials;
+  std::string out_of_date;  ///< why the trials are not of the current model, "" when they are
+};
+
+/// A judged trial's frames, played back (ShowTrialFrame).
+struct TrialPlaybackView {
+  std::string method;
+  int number = 0;  ///< 0: none shown
+  int frame = 0, frames = 0;
+  RgbImage image;
+  uint64_t image_frame = 0;  ///< grows with every new image
+};
+
 /// One method's rollouts as the Rollouts screen shows them.
 struct RolloutView {
   std::string method;
@@ -247,6 +299,10 @@ struct StudioSnapshot {
   bool training_running = false;
   bool training_cancelling = false;  ///< Cancel was pressed; the trainers stop at their next step
   std::vector<RolloutView> rollouts;
+  /// A real cell's trials: the one under way, the judged ones, and one played back.
+  TrialView trial;
+  std::vector<RealTrialsView> real_trials;
+  TrialPlaybackView trial_playback;
   bool rollouts_running = false;
   bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step
   int rollout_steps_done = 0, rollout_steps_total = 0;  ///< of the running rollouts, all methods
