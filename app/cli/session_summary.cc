@@ -134,7 +134,8 @@ json SessionInfoJson(const store::Session& session, const SessionResults& result
                {"damaged", damaged},
                {"teaching_time", TeachingLedgerJson(session)},
                {"training", ResultsJson(results.training, &store::TrainingRecordToJson)},
-               {"rollouts", ResultsJson(results.rollouts, &store::RolloutSummaryToJson)}};
+               {"rollouts", ResultsJson(results.rollouts, &store::RolloutSummaryToJson)},
+               {"real_trials", ResultsJson(results.trials, &store::RealTrialLogToJson)}};
   info["calibration"] = nullptr;
   if (!m.calibration_file.empty()) {
     const calib::CalibrationReport cal =
@@ -210,6 +211,13 @@ std::string SessionInfoText(const store::Session& session, const json& info,
     out << " over " << summary.tests << " scenarios\n";
     if (!r.out_of_date.empty()) {
       out << "  OUT OF DATE:    " << method << " rollouts: " << r.out_of_date << "\n";
+    }
+  }
+  for (const auto& [method, t] : results.trials) {
+    out << "  real trials:    " << method << ": " << t.record.successes() << " of "
+        << t.record.trials.size() << " succeeded on the real arm\n";
+    if (!t.out_of_date.empty()) {
+      out << "  OUT OF DATE:    " << method << " trials: " << t.out_of_date << "\n";
     }
   }
   return out.str();

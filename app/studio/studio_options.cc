@@ -15,6 +15,10 @@ using cli::NumberBetween;
 using cli::SeedNumber;
 using cli::WholeBetween;
 
+// A teacher would not place a beacon more often; the simulated calibration's many more points
+// add nothing to a rigid fit of 3 unknowns (2-D) that 100 do not.
+constexpr int kMaxCalibrationPoints = 100;
+
 CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
   app.add_option("--session", flags.options.session_dir,
                  "session folder (created if new); without, the studio starts at the session "
@@ -61,6 +65,11 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
       ->capture_default_str();
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
       ->check(WholeBetween(1, kMaxTests))
+      ->capture_default_str();
+  app.add_option("--calibration-points", flags.options.calibration_points,
+                 "places the beacon is put at for a calibration (the simulated cell's, or a "
+                 "real cell's, paced by the teacher)")
+      ->check(WholeBetween(3, kMaxCalibrationPoints))
       ->capture_default_str();
   app.add_option("--script", flags.script,
                  "play a script of inputs (click <label>, type, press, wait N, wait-idle, "

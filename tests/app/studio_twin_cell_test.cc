@@ -17,6 +17,8 @@
 #include <mutex>
 #include <thread>
 
+#include "app/cli/result_staleness.h"
+#include "app/cli/session_summary.h"
 #include "app/studio/studio_controller.h"
 #include "devices/cell/twin_cell.h"
 #include "devices/cell/twin_scene.h"
@@ -364,6 +366,13 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   EXPECT_FALSE(log->trials[1].succeeded);
   EXPECT_EQ(log->trials[1].reason, "missed the toast");
   EXPECT_EQ(log->cell, "real");
+  // `recon session info` says so too.
+  const cli::SessionResults results = cli::ReadSessionResults(session);
+  const nlohmann::json info = cli::SessionInfoJson(session, results);
+  EXPECT_EQ(info["real_trials"]["baseline"]["successes"], 1);
+  EXPECT_TRUE(info["real_trials"]["baseline"]["out_of_date"].is_null());
+  EXPECT_THAT(cli::SessionInfoText(session, info, results),
+              HasSubstr("real trials:    baseline: 1 of 2 succeeded on the real arm"));
   ASSERT_TRUE(log->trials[0].frames.has_value());
   const store::TrialFrames frames =
       store::ReadTrialFrames((fs::path(session.dir()) / *log->trials[0].frames).string());

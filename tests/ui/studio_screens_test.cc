@@ -13,6 +13,7 @@
 
 #include "engine/core/error.h"
 #include "tests/support/golden_image.h"
+#include "tests/ui/studio_harness.h"
 #include "tests/ui/studio_test_support.h"
 #include "ui/platform/frame_input.h"
 #include "ui/platform/headless_window.h"
@@ -25,36 +26,6 @@ namespace {
 
 using testing::Progress;
 using testing::SnapshotAt;
-
-constexpr int kWidth = 1280;
-constexpr int kHeight = 800;
-
-/// A headless studio window drawing whatever snapshot the test sets.
-class StudioHarness {
- public:
-  explicit StudioHarness(int width = kWidth, int height = kHeight, float ui_scale = 1.0f)
-      : window_({width, height, 16.0f, ui_scale}),
-        driver_(window_, [this] { DrawStudio(snapshot_, commands_, textures_); }) {}
-
-  void Show(const StudioSnapshot& snapshot) {
-    snapshot_ = snapshot;
-    driver_.WaitFrames(3);  // tables and wrapped text settle over two frames
-  }
-  UiDriver& driver() { return driver_; }
-  std::vector<StudioCommand> Commands() { return commands_.Drain(); }
-
- private:
-  // Declared so that the textures go before the window whose GL context owns them.
-  StudioSnapshot snapshot_;
-  CommandQueue commands_;
-  HeadlessWindow window_;
-  StudioTextures textures_;
-  UiDriver driver_;
-};
-
-std::string GoldenPath(const std::string& name) {
-  return std::string(RECON_SOURCE_DIR) + "/assets/goldens/studio_" + name + ".png";
-}
 
 struct ScreenCase {
   const char* name;

@@ -32,12 +32,14 @@ void DrawGuidedCalibration(const ScreenContext& context) {
   for (size_t i = 0; i < c.taken_pixel.size(); ++i) {
     BeaconView mark;
     mark.name = std::to_string(i + 1);
+    mark.label = "place " + mark.name;
     mark.pixel = c.taken_pixel[i];
     marks.push_back(mark);
   }
   if (c.tag_seen) {
     BeaconView tag;
     tag.name = "beacon";
+    tag.label = "the beacon's tag";
     tag.pixel = c.tag_pixel;
     marks.push_back(tag);
   }

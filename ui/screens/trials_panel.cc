@@ -25,6 +25,7 @@ void DrawLayoutCamera(const ScreenContext& context) {
   for (const TrialView::Object& o : s.trial.layout) {
     BeaconView mark;
     mark.name = o.name;
+    mark.label = o.name + " here";
     mark.pixel = o.pixel;
     marks.push_back(mark);
   }
@@ -93,15 +94,14 @@ void DrawJudgedTrials(const ScreenContext& context) {
       StatusText(Status::kWarning, Format("Out of date: %s.", r.out_of_date.c_str()));
     }
     for (const RealTrialsView::Row& row : r.trials) {
-      ImGui::PushID((r.method + std::to_string(row.number)).c_str());
-      if (Button("Play", row.has_frames, "this trial kept no frames")) {
+      if (Button(Format("Play##%s%d", r.method.c_str(), row.number).c_str(), row.has_frames,
+                 "this trial kept no frames")) {
         context.commands.Push(ShowTrialFrame{r.method, row.number, 0});
       }
       ImGui::SameLine();
       ImGui::Text("trial %d: %s%s%s%s", row.number, row.succeeded ? "success" : "failure",
                   row.reason.empty() ? "" : ": ", row.reason.c_str(),
                   row.stopped ? " (stopped)" : "");
-      ImGui::PopID();
     }
   }
   const TrialPlaybackView& p = s.trial_playback;

@@ -60,6 +60,8 @@ struct BeaconView {
   std::vector<float> reading;  ///< the latest reading (empty before the first)
   /// Where the reading projects into the camera image, for the overlay.
   std::optional<std::array<float, 2>> pixel;
+  /// What the overlay writes under the marker; empty: "beacon <name>".
+  std::string label;
   double rate_hz = 0;           ///< updates per second
   double dropout_fraction = 0;  ///< missed updates over the last seconds
   double noise_m = 0;           ///< measured spread of the readings per axis (the last 3 s)

@@ -54,7 +54,7 @@ std::optional<std::string> CameraView(const char* id, const ImageTexture& textur
     draw->AddCircleFilled(at, 3.0f, colour);
     // Centred under the marker: an object's name is written to its right, and a beacon sits on
     // an object, so beside it the two labels would overlap.
-    const std::string label = "beacon " + beacon.name;
+    const std::string label = beacon.label.empty() ? "beacon " + beacon.name : beacon.label;
     const ImVec2 label_size = ImGui::CalcTextSize(label.c_str());
     const ImVec2 label_at(at.x - 0.5f * label_size.x, at.y + 0.6f * radius + 4);
     draw->AddRectFilled(ImVec2(label_at.x - 2, label_at.y),

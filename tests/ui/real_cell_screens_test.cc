@@ -1,0 +1,152 @@
+// A real cell's screens, headless: the Calibrate step paced by the teacher, and the Rollouts
+// step's trials on the real arm (set up, running, judged, played back), each state a golden and
+// each control the command it sends.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <variant>
+
+#include "engine/core/error.h"
+#include "tests/support/golden_image.h"
+#include "tests/ui/studio_harness.h"
+#include "tests/ui/studio_test_support.h"
+
+namespace recon::ui {
+namespace {
+
+using testing::Progress;
+using testing::SnapshotAt;
+
+template <typename Command>
+std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
+  std::optional<Command> last;
+  for (const StudioCommand& c : commands) {
+    if (const auto* command = std::get_if<Command>(&c)) last = *command;
+  }
+  return last;
+}
+
+StudioSnapshot RealCell(Progress progress, teach::Step step) {
+  StudioSnapshot s = SnapshotAt(progress, step);
+  s.cell_kind = "real";
+  s.teacher_view = {};
+  return s;
+}
+
+TEST(RealCellScreensTest, TheGuidedCalibrationSaysWhatToDoAndShowsWhatTheDevicesSee) {
+  StudioHarness harness;
+  StudioSnapshot s = RealCell(Progress::kBeaconAssigned, teach::Step::kCalibrate);
+  harness.Show(s);
+  EXPECT_TRUE(harness.driver().Drawn("Collect points and fit"));
+  s.calibration.running = true;
+  s.calibration.guided = true;
+  s.calibration.points_target = 8;
+  s.calibration.points_collected = 3;
+  s.calibration.prompt = "Place 4 of 8: hold still...";
+  s.calibration.tag_seen = true;
+  s.calibration.tag_pixel = {100, 60};
+  s.calibration.taken_pixel = {{40, 30}, {120, 40}, {60, 90}};
+  s.calibration.beacon_uwb_m = {2.31f, -0.52f, 0.33f};
+  s.calibration.held_fraction = 0.6f;
+  s.busy_with = "the calibration";
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("calibrate_guided")));
+  EXPECT_TRUE(harness.driver().Drawn("camera##calibrate"));
+  harness.Commands();
+  harness.driver().Click("Cancel##calibration");
+  EXPECT_TRUE(Last<CancelCalibration>(harness.Commands()).has_value());
+}
+
+TEST(RealCellScreensTest, ATrialIsSetUpRunStoppedAndJudgedFromTheRolloutsScreen) {
+  StudioHarness harness;
+  StudioSnapshot s = RealCell(Progress::kTrained, teach::Step::kRollouts);
+  s.rollout_tests = 10;
+  harness.Show(s);
+  // No trial yet: one button per trained method.
+  harness.Commands();
+  harness.driver().Click("Run 10 trials of RECON (Play)");
+  std::optional<StartTrials> start = Last<StartTrials>(harness.Commands());
+  ASSERT_TRUE(start.has_value());
+  EXPECT_EQ(start->method, "recon");
+  EXPECT_EQ(start->trials, 10);
+
+  s.busy_with = "the trials";
+  s.trial.phase = TrialPhase::kSetUp;
+  s.trial.method = "recon";
+  s.trial.label = "RECON (Play)";
+  s.trial.number = 3;
+  s.trial.first = 3;
+  s.trial.last = 12;
+  s.trial.scene_seed = 1234;
+  s.trial.layout = {{"bowl", {0.62f, -0.18f}, std::array<float, 2>{110, 80}},
+                    {"plate", {0.55f, 0.35f}, std::array<float, 2>{40, 70}},
+                    {"toast", {0.35f, 0.02f}, std::array<float, 2>{80, 40}}};
+  s.trial.message =
+      "Trial 3 stopped after 41 steps: the e-stop (e-stop pressed). The arm is stopped and the "
+      "trial was not kept: set the layout up again and run it once the cause is fixed.";
+  harness.Show(s);
+  EXPECT_TRUE(
+      ::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("trial_set_up")));
+  harness.driver().Click("Ready: run trial 3");
+  EXPECT_TRUE(Last<RunTrial>(harness.Commands()).has_value());
+  harness.driver().Click("End trials");
+  EXPECT_TRUE(Last<EndTrials>(harness.Commands()).has_value());
+  // Under the e-stop the trial waits, and the button says why.
+  s.safety.estop = true;
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Ready: run trial 3"), UserError);  // disabled
+  EXPECT_FALSE(Last<RunTrial>(harness.Commands()).has_value());
+  s.safety.estop = false;
+
+  s.trial.message.clear();
+  s.trial.phase = TrialPhase::kRunning;
+  s.trial.step = 57;
+  s.trial.max_steps = 200;
+  harness.Show(s);
+  harness.driver().Click("STOP the trial");
+  EXPECT_TRUE(Last<StopTrial>(harness.Commands()).has_value());
+
+  s.trial.phase = TrialPhase::kJudge;
+  s.trial.stopped = true;
+  harness.Show(s);
+  EXPECT_TRUE(
+      ::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("trial_judge")));
+  harness.driver().Click("Failure: took it to the bowl");
+  std::optional<JudgeTrial> judged = Last<JudgeTrial>(harness.Commands());
+  ASSERT_TRUE(judged.has_value());
+  EXPECT_FALSE(judged->succeeded);
+  EXPECT_EQ(judged->reason, "took it to the bowl");
+  harness.driver().Click("Success");
+  judged = Last<JudgeTrial>(harness.Commands());
+  ASSERT_TRUE(judged.has_value());
+  EXPECT_TRUE(judged->succeeded);
+
+  // Judged trials are listed, and one with frames plays back.
+  s.trial = {};
+  s.busy_with.clear();
+  RealTrialsView trials;
+  trials.method = "recon";
+  trials.label = "RECON (Play)";
+  trials.successes = 1;
+  trials.trials = {{1, true, false, "", true}, {2, false, true, "missed the toast", false}};
+  s.real_trials = {trials};
+  s.trial_playback.method = "recon";
+  s.trial_playback.number = 1;
+  s.trial_playback.frame = 4;
+  s.trial_playback.frames = 20;
+  s.trial_playback.image = testing::SyntheticCamera();
+  s.trial_playback.image_frame = 1;
+  harness.Show(s);
+  harness.driver().Click("Play##recon1");
+  std::optional<ShowTrialFrame> shown = Last<ShowTrialFrame>(harness.Commands());
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_EQ(shown->number, 1);
+  EXPECT_EQ(shown->frame, 0);
+  EXPECT_THROW(harness.driver().Click("Play##recon2"), UserError);  // no frames kept: disabled
+}
+
+}  // namespace
+}  // namespace recon::ui
