@@ -177,7 +177,15 @@ std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::Worl
                                                                     const store::Session& session) {
   // Calibrated, the world maps the beacon to the table; before, show that it reports, in its
   // own (UWB) frame.
-  if (!session.manifest().calibration_file.empty()) return world.BeaconReading();
+  if (!session.manifest().calibration_file.empty()) {
+    try {
+      return world.BeaconReading();
+    } catch (const UserError&) {
+      // Not reported yet, or no longer: the last reading stands, and the beacon's rate and the
+      // device's row say what is wrong. A recording that needs the reading says so itself.
+      return std::nullopt;
+    }
+  }
   std::vector<float> reading;
   for (const devices::BeaconSample& sample : cell_->beacons().Poll()) {
     reading = {static_cast<float>(sample.position_uwb_m.x()),

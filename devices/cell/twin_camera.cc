@@ -1,7 +1,9 @@
 #include "devices/cell/twin_camera.h"
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <chrono>
+
 #include <system_error>
 #include <thread>
 #include <utility>
@@ -37,12 +39,18 @@ TwinCamera::TwinCamera(TwinCameraOptions options, const devices::Clock& clock)
 TwinCamera::~TwinCamera() = default;
 
 void TwinCamera::FollowLayout() {
-  std::error_code error;
-  const auto time = std::filesystem::last_write_time(options_.layout_file, error);
-  if (error) throw UserError(options_.layout_file + ": cannot read the twin's layout (missing)");
-  if (layout_time_ && *layout_time_ == time) return;
+  // The file is replaced whole (WriteTwinLayout renames a new one over it): a new inode or a new
+  // time says it changed, whatever the file system's time resolution.
+  struct stat info {};
+  if (::stat(options_.layout_file.c_str(), &info) != 0) {
+    throw UserError(options_.layout_file + ": cannot read the twin's layout (missing)");
+  }
+  const LayoutVersion version{static_cast<uint64_t>(info.st_ino),
+                              static_cast<int64_t>(info.st_mtim.tv_sec),
+                              static_cast<int64_t>(info.st_mtim.tv_nsec)};
+  if (layout_version_ && *layout_version_ == version) return;
   scene_->Arrange(ReadTwinLayout(options_.layout_file));
-  layout_time_ = time;
+  layout_version_ = version;
 }
 
 void TwinCamera::FollowArm() {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <filesystem>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -63,7 +63,13 @@ class TwinCamera final : public devices::Camera {
   std::unique_ptr<worlds::SceneRenderer> renderer_;
   std::unique_ptr<robot::RtdeClient> rtde_;
   double next_connect_s_ = 0;
-  std::optional<std::filesystem::file_time_type> layout_time_;
+  /// Which layout file was read last: its inode and modification time.
+  struct LayoutVersion {
+    uint64_t inode = 0;
+    int64_t seconds = 0, nanoseconds = 0;
+    bool operator==(const LayoutVersion& other) const = default;
+  };
+  std::optional<LayoutVersion> layout_version_;
   int64_t next_sequence_ = 0;
   double next_frame_s_ = 0;
 };

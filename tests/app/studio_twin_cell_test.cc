@@ -20,22 +20,17 @@
 #include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
 #include "app/studio/studio_controller.h"
-#include "devices/cell/twin_cell.h"
-#include "devices/cell/twin_scene.h"
-#include "devices/robot/fake_ur_controller.h"
-#include "devices/uwb/fake_dwm1001.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/rng.h"
 #include "engine/store/real_trials.h"
 #include "engine/store/session.h"
+#include "tests/app/twin_rig.h"
 
 namespace recon::studio {
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-constexpr uint64_t kPlateId = 0xDECA0000000000A1ull;
 
 ui::StudioSnapshot WaitFor(const StudioController& controller,
                            const std::function<bool(const ui::StudioSnapshot&)>& done,
@@ -53,82 +48,16 @@ ui::StudioSnapshot WaitFor(const StudioController& controller,
   }
 }
 
-/// The plate's beacon in the twin: where the layout puts the plate, as the installation's UWB
-/// anchors measure it (a hidden frame 2 m off and turned 30 degrees), with +-1 cm of noise.
-class TwinBeacon {
- public:
-  explicit TwinBeacon(const Eigen::Vector3d& table_m) : table_m_(table_m) {
-    uwb::FakeDwm1001::Options options;
-    options.period_ms = 50;
-    options.node_id = kPlateId;
-    options.next_reading = [this] {
-      std::lock_guard lock(mutex_);
-      uwb::UwbReading r;
-      r.has_position = !silent_;
-      const Eigen::Vector3d p = hidden_.Apply(table_m_);
-      r.x_m = p.x() + noise_.Uniform(-0.01, 0.01);
-      r.y_m = p.y() + noise_.Uniform(-0.01, 0.01);
-      r.z_m = p.z();
-      r.quality = 90;
-      return r;
-    };
-    fake_ = std::make_unique<uwb::FakeDwm1001>(options);
-  }
-  ~TwinBeacon() { fake_.reset(); }  // its thread calls back into this object
-
-  void MoveTo(const Eigen::Vector3d& table_m) {
-    std::lock_guard lock(mutex_);
-    table_m_ = table_m;
-  }
-  void Silence(bool silent) {
-    std::lock_guard lock(mutex_);
-    silent_ = silent;
-  }
-  const std::string& port() const { return fake_->port(); }
-  /// A calibration that knows the hidden frame (what a good calibration recovers).
-  calib::CalibrationReport Calibration() const {
-    std::vector<calib::CalibrationPoint> points;
-    for (const Eigen::Vector3d& p :
-         {Eigen::Vector3d(0.3, -0.3, 0.02), Eigen::Vector3d(0.8, -0.2, 0.02),
-          Eigen::Vector3d(0.7, 0.3, 0.02), Eigen::Vector3d(0.4, 0.25, 0.02)}) {
-      points.push_back({p, hidden_.Apply(p)});
-    }
-    return calib::Calibrate(points);
-  }
-
- private:
-  const calib::RigidTransform hidden_{Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()).matrix(),
-                                      Eigen::Vector3d(2.0, -1.0, 0.3)};
-  std::mutex mutex_;
-  Eigen::Vector3d table_m_;
-  bool silent_ = false;
-  Rng noise_{31};  // seed 31: the readings' noise
-  std::unique_ptr<uwb::FakeDwm1001> fake_;
-};
-
 class StudioTwinCellTest : public ::testing::Test {
  protected:
   void SetUp() override {
     char pattern[] = "/tmp/recon-studio-twin-XXXXXX";
     ASSERT_NE(::mkdtemp(pattern), nullptr);
     dir_ = pattern;
-    layout_.bowl = {0.12, 0.0};  // clear of the beacon's places
-    scene_.Arrange(layout_);
-    beacon_ = std::make_unique<TwinBeacon>(scene_.BeaconPosition());
-    robot_ = std::make_unique<robot::FakeUrController>();
-    cell::TwinCellDevices devices;
-    devices.rtde_port = robot_->rtde_port();
-    devices.script_port = robot_->script_port();
-    devices.beacon_ports = {beacon_->port()};
-    devices.beacon_names = {{"0xDECA0000000000A1", "plate"}};
-    // The shell's `lec` stream, where a tag without a fix prints a line without a position (in
-    // TLV mode the fake answers every request with the last position).
-    devices.beacon_mode = "lec";
-    profile_ = cell::WriteTwinCell((dir_ / "twin").string(), devices, layout_);
+    rig_ = std::make_unique<testing::TwinRig>(dir_ / "twin");
   }
   void TearDown() override {
-    robot_.reset();
-    beacon_.reset();
+    rig_.reset();
     fs::remove_all(dir_);
   }
 
@@ -136,28 +65,15 @@ class StudioTwinCellTest : public ::testing::Test {
     StudioOptions options;
     options.session_dir = (dir_ / "session").string();
     options.recent_sessions_file = (dir_ / "recent.json").string();
-    options.cell_profile = profile_;
+    options.cell_profile = rig_->profile;
     options.dev_dir = (dir_ / "no-dev").string();
     options.calibration_points = 5;
     options.countdown_s = 0;
     return options;
   }
 
-  /// The teacher puts the plate, the beacon beside it, at table (x, y).
-  Eigen::Vector3d PutPlate(double x, double y) {
-    layout_.plate = {x, y};
-    scene_.Arrange(layout_);
-    cell::WriteTwinLayout((dir_ / "twin" / "layout.json").string(), layout_);
-    beacon_->MoveTo(scene_.BeaconPosition());
-    return scene_.BeaconPosition();
-  }
-
   fs::path dir_;
-  std::string profile_;
-  cell::TwinLayout layout_;
-  cell::TwinScene scene_;
-  std::unique_ptr<TwinBeacon> beacon_;
-  std::unique_ptr<robot::FakeUrController> robot_;
+  std::unique_ptr<testing::TwinRig> rig_;
 };
 
 TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
@@ -181,12 +97,12 @@ TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
   const std::vector<Eigen::Vector2d> places = {
       {0.35, -0.3}, {0.75, -0.25}, {0.7, 0.2}, {0.4, 0.15}, {0.55, -0.05}};
   std::vector<Eigen::Vector3d> truth;
-  const tags::PinholeCamera camera = scene_.TopCamera(1280, 960);
+  const tags::PinholeCamera camera = rig_->scene.TopCamera(1280, 960);
   for (size_t i = 0; i < places.size(); ++i) {
     // The beacon's battery runs flat as it is moved to the third place: the screen says so and
     // nothing is taken; it reports again, and the place is taken.
-    if (i == 2) beacon_->Silence(true);
-    truth.push_back(PutPlate(places[i].x(), places[i].y()));
+    if (i == 2) rig_->beacon->Silence(true);
+    truth.push_back(rig_->PutPlate(places[i].x(), places[i].y()));
     if (i == 2) {
       s = WaitFor(controller, [](const auto& now) { return now.calibration.beacon_silent; });
       EXPECT_THAT(s.calibration.prompt, HasSubstr("No reading from the beacon"));
@@ -196,7 +112,7 @@ TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
       const Eigen::Vector2d expected = camera.Project(truth.back());
       EXPECT_NEAR(s.calibration.tag_pixel[0], expected.x(), 2.0);
       EXPECT_NEAR(s.calibration.tag_pixel[1], expected.y(), 2.0);
-      beacon_->Silence(false);
+      rig_->beacon->Silence(false);
     }
     s = WaitFor(controller, [&](const auto& now) {
       return now.calibration.points_collected >= static_cast<int>(i + 1) ||
@@ -222,7 +138,7 @@ TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
       (fs::path(session.dir()) / session.manifest().calibration_file).string());
   EXPECT_TRUE(saved.passed);
   controller.Push(ui::AssignBeacon{"plate", "plate"});
-  const Eigen::Vector3d now_at = PutPlate(0.6, -0.2);
+  const Eigen::Vector3d now_at = rig_->PutPlate(0.6, -0.2);
   s = WaitFor(controller, [&](const auto& now) {
     return now.beacons.size() == 1 && now.beacons[0].reading.size() == 2 &&
            std::abs(now.beacons[0].reading[0] - now_at.x()) < 0.03 &&
@@ -235,7 +151,7 @@ TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
   StudioController controller(Options());
   WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
   controller.Push(ui::StartCalibration{});
-  PutPlate(0.4, -0.25);
+  rig_->PutPlate(0.4, -0.25);
   ui::StudioSnapshot s =
       WaitFor(controller, [](const auto& now) { return now.calibration.points_collected == 1; });
   controller.Push(ui::CancelCalibration{});
@@ -249,7 +165,7 @@ TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
 }
 
 TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJudgedOne) {
-  calib::SaveCalibration(beacon_->Calibration(), (dir_ / "cal.json").string());
+  calib::SaveCalibration(rig_->beacon->Calibration(), (dir_ / "cal.json").string());
   StudioOptions options = Options();
   options.calibration_file = (dir_ / "cal.json").string();
   options.train_steps = 20;
@@ -291,25 +207,16 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   EXPECT_EQ(s.busy_with, "the trials");
   // The layout to set up: the test plan's first scene, each object where the camera sees it.
   ASSERT_EQ(s.trial.layout.size(), 3u);
-  const tags::PinholeCamera camera = scene_.TopCamera(1280, 960);
+  const tags::PinholeCamera camera = rig_->scene.TopCamera(1280, 960);
   for (const ui::TrialView::Object& o : s.trial.layout) {
     ASSERT_TRUE(o.pixel.has_value()) << o.name;
     const Eigen::Vector2d expected = camera.Project({o.table_m[0], o.table_m[1], 0.0});
     EXPECT_NEAR((*o.pixel)[0], expected.x(), 3.0) << o.name;
     EXPECT_NEAR((*o.pixel)[1], expected.y(), 3.0) << o.name;
   }
-  const auto set_up = [&](const ui::TrialView& trial) {
-    for (const ui::TrialView::Object& o : trial.layout) {
-      Eigen::Vector2d& place = o.name == "plate"  ? layout_.plate
-                               : o.name == "bowl" ? layout_.bowl
-                                                  : layout_.toast;
-      place = {o.table_m[0], o.table_m[1]};
-    }
-    PutPlate(layout_.plate.x(), layout_.plate.y());
-  };
   // Trial 1: set up, run, stopped by the person after a few steps, judged a success.
-  set_up(s.trial);
-  const int64_t commands = robot_->commands_received();
+  rig_->SetUpLayout(s.trial);
+  const int64_t commands = rig_->robot->commands_received();
   controller.Push(ui::RunTrial{});
   s = WaitFor(controller, [](const auto& now) {
     return now.trial.phase == ui::TrialPhase::kRunning && now.trial.step >= 5;
@@ -319,7 +226,7 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
               [](const auto& now) { return now.trial.phase == ui::TrialPhase::kJudge; });
   EXPECT_TRUE(s.trial.stopped);
   const int trial_one_steps = s.trial.step;
-  EXPECT_GT(robot_->commands_received(), commands + 5);  // the policy drove the real path
+  EXPECT_GT(rig_->robot->commands_received(), commands + 5);  // the policy drove the real path
   controller.Push(ui::JudgeTrial{true, ""});
   s = WaitFor(controller, [](const auto& now) {
     return now.trial.phase == ui::TrialPhase::kSetUp && now.trial.number == 2;
@@ -328,7 +235,7 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   EXPECT_EQ(s.real_trials[0].successes, 1);
 
   // Trial 2: the e-stop mid-trial stops it, unjudged and not kept; run again, judged a failure.
-  set_up(s.trial);
+  rig_->SetUpLayout(s.trial);
   controller.Push(ui::RunTrial{});
   s = WaitFor(controller, [](const auto& now) { return now.trial.step >= 3; });
   controller.Push(ui::EmergencyStop{true, "test"});
@@ -399,7 +306,7 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   });
   controller.Push(ui::RunTrial{});
   s = WaitFor(controller, [](const auto& now) { return now.trial.step >= 2; });
-  robot_.reset();  // the arm's controller goes away mid-trial
+  rig_->robot.reset();  // the arm's controller goes away mid-trial
   s = WaitFor(controller, [](const auto& now) {
     return now.trial.phase == ui::TrialPhase::kSetUp && !now.trial.message.empty();
   });

@@ -59,9 +59,10 @@ void DrawBeaconsScreen(const ScreenContext& context) {
     ImGui::Text("Beacon %s (%s)", b.name.c_str(), b.quantity.c_str());
     const std::string preview = b.object.empty() ? "choose an object" : b.object;
     ImGui::SetNextItemWidth(std::min(Px(220), panel_width - Px(60)));
-    if (ImGui::BeginCombo("marks##object", preview.c_str())) {
+    if (BeginCombo(("marks##object-" + b.name).c_str(), preview.c_str())) {
       for (const ObjectView& o : s.objects) {
-        if (ImGui::Selectable(o.name.c_str(), o.name == b.object) && !busy) {
+        // One label per beacon and object, so a script can choose it: "plate##for-plate".
+        if (Selectable((o.name + "##for-" + b.name).c_str(), o.name == b.object) && !busy) {
           context.commands.Push(AssignBeacon{b.name, o.name});
         }
       }

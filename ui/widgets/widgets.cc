@@ -76,6 +76,12 @@ bool Selectable(const char* label, bool selected, bool enabled) {
   return clicked && enabled;
 }
 
+bool BeginCombo(const char* label, const char* preview) {
+  const bool open = ImGui::BeginCombo(label, preview);
+  WidgetRegistry::ForThisThread().AddLastItem(label);
+  return open;
+}
+
 bool BeginMenu(const char* label, bool enabled) {
   const bool open = ImGui::BeginMenu(label, enabled);
   WidgetRegistry::ForThisThread().AddLastItem(label, enabled);

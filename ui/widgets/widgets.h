@@ -19,6 +19,8 @@ bool Button(const char* label, bool enabled = true, const std::string& why_disab
 bool Selectable(const char* label, bool selected, bool enabled = true);
 /// A menu of the menu bar (true while open: draw its items, then ImGui::EndMenu) and its items.
 bool BeginMenu(const char* label, bool enabled = true);
+/// A drop-down list showing `preview`; its items are Selectables. End it with ImGui::EndCombo.
+bool BeginCombo(const char* label, const char* preview);
 bool MenuItem(const char* label, bool enabled = true, const std::string& why_disabled = "");
 /// A one-line text field `width` pixels wide over `buffer`; true when Enter was pressed in it.
 /// Clicking it (or the driver's `click <label>`) focuses it for typing.

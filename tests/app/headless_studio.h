@@ -1,0 +1,39 @@
+#pragma once
+
+#include <optional>
+
+#include "app/studio/studio_controller.h"
+#include "ui/platform/headless_window.h"
+#include "ui/studio/studio_ui.h"
+#include "ui/testing/ui_driver.h"
+
+namespace recon::studio {
+
+/// The studio as recon-studio --headless runs it, in this process.
+class HeadlessStudio {
+ public:
+  explicit HeadlessStudio(const StudioOptions& options) : controller_(options) {
+    window_.emplace(ui::UiRenderer::Options{1280, 800, 16.0f, 1.0f});
+    driver_.emplace(*window_, [this] {
+      snapshot_ = controller_.Snapshot();
+      ui::DrawStudio(snapshot_, commands_, textures_);
+      for (ui::StudioCommand& command : commands_.Drain()) controller_.Push(std::move(command));
+    });
+    driver_->SetSettledCheck([this] { return controller_.Settled(); });
+    driver_->SetIdleCheck([this] { return controller_.Idle(); });
+    driver_->SetSnapshotSource([this] { return controller_.Snapshot(); });
+  }
+
+  StudioController& controller() { return controller_; }
+  ui::UiDriver& driver() { return *driver_; }
+
+ private:
+  StudioController controller_;
+  std::optional<ui::HeadlessWindow> window_;  // after the controller, as in recon-studio
+  ui::StudioTextures textures_;
+  ui::CommandQueue commands_;
+  ui::StudioSnapshot snapshot_;
+  std::optional<ui::UiDriver> driver_;
+};
+
+}  // namespace recon::studio
