@@ -10,6 +10,8 @@ pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 # Headless rendering: Mesa's EGL with a desktop-GL (compatibility profile) context.
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
 find_package(apriltag REQUIRED)
+# Gamepads by their standard mapping (devices/teleop/sdl_gamepad.h): the joystick API only.
+find_package(SDL2 REQUIRED)
 find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs videoio calib3d)
 # Sessions: robomimic-layout HDF5 through the C library (Debian: libhdf5-dev, serial build).
 find_package(HDF5 REQUIRED COMPONENTS C)
