@@ -5,7 +5,6 @@
 
 #include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
-#include "devices/teleop/cartesian_velocity.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 
@@ -146,21 +145,18 @@ Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopI
   return velocity * speed_m_s;
 }
 
-teach::Teacher RealCellSource::PersonTeacher(worlds::World&, const teach::TeleopCommand* command) {
+teach::Teacher RealCellSource::PersonTeacher(worlds::World& world,
+                                             const teach::TeleopCommand* command) {
   safety::GuardedArm* arm = cell_->arm();
   if (arm == nullptr) throw UserError(cell_->profile().path + ": the profile names no robot");
-  return [arm, command](const worlds::World&) {
-    const safety::SafetyLimits& limits = arm->envelope().limits();
-    teleop::CartesianVelocityOptions options;
-    options.tool_offset_m = limits.tool_offset_m;
-    const std::array<double, 6> qd = teleop::CartesianJointVelocities(
-        arm->State().position_rad, command->velocity_m_s, limits.base_in_table, options);
-    teach::TeacherAction action;
-    for (double v : qd) action.u.push_back(static_cast<float>(v));
-    action.u.push_back(command->close_gripper ? 1.0f : 0.0f);
-    action.finished = command->finish;
-    return action;
-  };
+  // The simulated cell's teleop (engine/teach/cartesian_teleop.h), on this arm's joints and
+  // envelope; the guarded arm then judges every command.
+  const safety::SafetyLimits& limits = arm->envelope().limits();
+  teach::TeleopArm teleop_arm;
+  teleop_arm.base_in_table = limits.base_in_table;
+  teleop_arm.tool_offset_m = limits.tool_offset_m;
+  return teach::CartesianTeleopTeacher([arm] { return arm->State().position_rad; }, command,
+                                       teleop_arm, world.StepSeconds());
 }
 
 void RealCellSource::EmergencyStop(bool engage, const std::string& reason) {

@@ -1,62 +1,63 @@
 #include "engine/teach/cartesian_teleop.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <utility>
 
-#include <mujoco/mujoco.h>
+#include "engine/safety/ur5_kinematics.h"
+#include "engine/teach/resolved_rate.h"
 
 namespace recon::teach {
 
 namespace {
 
-/// The yaw of the fingers' closing axis about the vertical, as Ur5Arm::SolveGraspIk defines it
-/// (its desired frame has the x axis at (cos yaw, sin yaw, 0)).
-double CurrentToolYaw(worlds::Tabletop& world) {
-  const mjModel* m = world.scene().model();
-  const mjData* d = world.scene().data();
-  const int site = mj_name2id(m, mjOBJ_SITE, "ur5_grip");
-  if (site < 0) return 0.0;
-  const mjtNum* r = d->site_xmat + 9 * site;  // row-major: the x axis is the first column
-  return std::atan2(r[3], r[0]);
+TeleopArm TabletopArm(const worlds::Tabletop& world) {
+  TeleopArm arm;  // the simulated arm's base is the table frame's origin
+  arm.tool_offset_m = world.safety_limits().tool_offset_m;
+  return arm;
 }
 
 }  // namespace
 
+std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
+                                         const TeleopCommand& command, const TeleopArm& arm,
+                                         double period_s, const CartesianTeleopLimits& limits) {
+  std::vector<float> u(7, 0.0f);
+  u[6] = command.close_gripper ? 1.0f : 0.0f;
+  Eigen::Vector3d velocity = command.velocity_m_s;
+  if (!velocity.allFinite() || velocity.isZero(0.0)) return u;
+  // The height limits: no further than a period takes the tool point to them.
+  const double z = (arm.base_in_table * safety::Ur5ToolPoint(q_rad, arm.tool_offset_m)).z();
+  velocity.z() = std::clamp(velocity.z(), std::min(0.0, (limits.min_grip_height_m - z) / period_s),
+                            std::max(0.0, (limits.max_grip_height_m - z) / period_s));
+  CartesianVelocityOptions options;
+  options.tool_offset_m = arm.tool_offset_m;
+  options.max_joint_speed_rad_s = limits.max_joint_speed_rad_s;
+  const std::array<double, 6> qd =
+      CartesianJointVelocities(q_rad, velocity, arm.base_in_table, options);
+  for (int i = 0; i < 6; ++i) u[i] = static_cast<float>(qd[i]);
+  return u;
+}
+
 std::vector<float> CartesianTeleopAction(worlds::Tabletop& world, const TeleopCommand& command,
                                          const CartesianTeleopLimits& limits) {
-  worlds::Ur5Arm& arm = world.arm();
-  std::vector<float> u(worlds::Ur5Arm::kJoints + 1, 0.0f);
-  u[worlds::Ur5Arm::kJoints] = command.close_gripper ? 1.0f : 0.0f;
-  if (!command.velocity_m_s.allFinite() || command.velocity_m_s.isZero()) return u;
-  const double period = worlds::Tabletop::kControlPeriod_s;
-  const Eigen::Vector3d grip = arm.GripPosition();
-  Eigen::Vector3d target = grip + command.velocity_m_s * period;
-  target.z() = std::clamp(target.z(), limits.min_grip_height_m, limits.max_grip_height_m);
-  const worlds::Ur5Joints q = arm.JointPositions();
-  // Keep the tool's current yaw: the teleop translates the grip point, and turning the wrist to
-  // some fixed yaw would eat the joint-speed budget of the first steps.
-  const auto goal = arm.SolveGraspIk(target, CurrentToolYaw(world), q);
-  if (!goal) return u;  // out of reach: hold still rather than fling the arm
-  // Reach the target in one control period, scaled as a whole (not clamped per joint) so the
-  // grip point keeps to the commanded direction.
-  std::array<double, worlds::Ur5Arm::kJoints> v{};
-  double fastest = 0.0;
-  for (int i = 0; i < worlds::Ur5Arm::kJoints; ++i) {
-    v[i] = ((*goal)[i] - q[i]) / period;
-    fastest = std::max(fastest, std::abs(v[i]));
-  }
-  const double scale =
-      fastest > limits.max_joint_speed_rad_s ? limits.max_joint_speed_rad_s / fastest : 1.0;
-  for (int i = 0; i < worlds::Ur5Arm::kJoints; ++i) u[i] = static_cast<float>(v[i] * scale);
-  return u;
+  return CartesianTeleopAction(world.arm().JointPositions(), command, TabletopArm(world),
+                               worlds::Tabletop::kControlPeriod_s, limits);
+}
+
+Teacher CartesianTeleopTeacher(std::function<std::array<double, 6>()> joints,
+                               const TeleopCommand* command, const TeleopArm& arm, double period_s,
+                               const CartesianTeleopLimits& limits) {
+  return [joints = std::move(joints), command, arm, period_s, limits](const worlds::World&) {
+    return TeacherAction{CartesianTeleopAction(joints(), *command, arm, period_s, limits),
+                         command->finish};
+  };
 }
 
 Teacher CartesianTeleopTeacher(worlds::Tabletop& world, const TeleopCommand* command,
                                const CartesianTeleopLimits& limits) {
-  return [&world, command, limits](const worlds::World&) {
-    return TeacherAction{CartesianTeleopAction(world, *command, limits), command->finish};
-  };
+  return CartesianTeleopTeacher([&world] { return world.arm().JointPositions(); }, command,
+                                TabletopArm(world), worlds::Tabletop::kControlPeriod_s, limits);
 }
 
 }  // namespace recon::teach

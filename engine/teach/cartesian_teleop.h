@@ -1,6 +1,8 @@
 #pragma once
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,16 +33,38 @@ struct CartesianTeleopLimits {
   double max_grip_height_m = 0.45;
 };
 
-/// The tabletop arm's action for a teleop command: joint velocities that move the grip point by
-/// one control period of the commanded velocity, the tool pointing straight down (the arm's IK),
-/// and the gripper as commanded. Holding still (zero velocity) sends zero joint velocities, so
-/// the arm does not drift while the teacher thinks. A target out of reach also holds still.
+/// Where the arm stands and which point of it the teacher steers.
+struct TeleopArm {
+  /// The UR5's base in the table frame (the simulated cell's is the identity).
+  Eigen::Isometry3d base_in_table = Eigen::Isometry3d::Identity();
+  /// The steered point along the flange's z axis (the safety envelope's tool point).
+  double tool_offset_m = 0.1;
+};
+
+/// The one Cartesian teleop of both cells, simulated and real: the action (6 joint velocities,
+/// then the gripper, closed above 0.5) that moves the arm's tool point at the commanded table
+/// velocity from joints `q_rad`, holding the tool's orientation (resolved rate over the UR5's DH
+/// model, damped near singularities, every joint within max_joint_speed_rad_s with the
+/// direction kept: resolved_rate.h). The vertical velocity is cut so that one control period
+/// (`period_s`) never takes the tool point outside the height limits. Holding still (a zero
+/// velocity) sends zero joint velocities, so the arm does not drift while the teacher thinks; so
+/// do non-finite commands or joints.
+std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
+                                         const TeleopCommand& command, const TeleopArm& arm,
+                                         double period_s, const CartesianTeleopLimits& limits = {});
+
+/// The same for the simulated tabletop's arm (its joints, its envelope's tool point, its base at
+/// the table frame's origin, its 10 Hz).
 std::vector<float> CartesianTeleopAction(worlds::Tabletop& world, const TeleopCommand& command,
                                          const CartesianTeleopLimits& limits = {});
 
 /// A teacher driven by a person through `*command`, which the caller updates between ticks (the
-/// studio's cell thread sets it from the keyboard or the gamepad). `*command` must outlive the
-/// teacher; its `finish` ends the demonstration.
+/// studio's cell thread sets it from the keyboard or the gamepad), for an arm whose joints
+/// `joints` reads. `*command` must outlive the teacher; its `finish` ends the demonstration.
+Teacher CartesianTeleopTeacher(std::function<std::array<double, 6>()> joints,
+                               const TeleopCommand* command, const TeleopArm& arm, double period_s,
+                               const CartesianTeleopLimits& limits = {});
+/// The same for the simulated tabletop's arm.
 Teacher CartesianTeleopTeacher(worlds::Tabletop& world, const TeleopCommand* command,
                                const CartesianTeleopLimits& limits = {});
 

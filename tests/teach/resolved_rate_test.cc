@@ -2,7 +2,7 @@
 // one control tick of its output moves the tool point as asked and leaves the tool's orientation
 // alone, around the simulated arm's home and with the base moved and turned on the table.
 
-#include "devices/teleop/cartesian_velocity.h"
+#include "engine/teach/resolved_rate.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "engine/safety/ur5_kinematics.h"
 #include "engine/worlds/ur5_arm.h"
 
-namespace recon::teleop {
+namespace recon::teach {
 namespace {
 
 using Joints = std::array<double, 6>;
@@ -163,4 +163,4 @@ TEST(CartesianVelocityTest, NonsenseOptionsAreRefused) {
 }
 
 }  // namespace
-}  // namespace recon::teleop
+}  // namespace recon::teach

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <array>
 
-namespace recon::teleop {
+namespace recon::teach {
 
 /// Tuning of the resolved-rate mapping. The defaults suit teaching with a UR5 next to a person.
 struct CartesianVelocityOptions {
@@ -37,4 +37,4 @@ std::array<double, 6> CartesianJointVelocities(const std::array<double, 6>& q_ra
                                                const Eigen::Isometry3d& base_in_table,
                                                const CartesianVelocityOptions& options = {});
 
-}  // namespace recon::teleop
+}  // namespace recon::teach

@@ -1,4 +1,4 @@
-#include "devices/teleop/cartesian_velocity.h"
+#include "engine/teach/resolved_rate.h"
 
 #include <Eigen/SVD>
 #include <algorithm>
@@ -7,7 +7,7 @@
 
 #include "engine/safety/ur5_kinematics.h"
 
-namespace recon::teleop {
+namespace recon::teach {
 
 namespace {
 
@@ -86,4 +86,4 @@ Joints CartesianJointVelocities(const Joints& q_rad, const Eigen::Vector3d& tool
   return qd;
 }
 
-}  // namespace recon::teleop
+}  // namespace recon::teach
