@@ -125,11 +125,6 @@ void StudioCell::Apply(const ui::JudgeTrial& c) {
   trial.steps = run.step;
   trial.seconds = run.step * world_->StepSeconds();
   trial.judged_at = store::NowIso8601();
-  // The frames first: once the log names them, they are there.
-  if (!run.frames.y.empty()) {
-    store::WriteTrialFrames(session_->TrialFramesPath(run.method, run.number), run.frames);
-    trial.frames = store::Session::TrialFramesRelativePath(run.method, run.number);
-  }
   store::RealTrialLog log =
       store::ReadRealTrialLog(*session_, run.method).value_or(store::RealTrialLog{});
   log.method = run.method;
@@ -139,6 +134,11 @@ void StudioCell::Apply(const ui::JudgeTrial& c) {
   if (static_cast<int>(log.trials.size()) + 1 != run.number) {
     throw UserError("the session's " + run.method + " trials changed while this one ran (" +
                     std::to_string(log.trials.size()) + " judged now): start trials again");
+  }
+  // The frames first: once the log names them, they are there.
+  if (!run.frames.y.empty()) {
+    store::WriteTrialFrames(session_->TrialFramesPath(run.method, run.number), run.frames);
+    trial.frames = store::Session::TrialFramesRelativePath(run.method, run.number);
   }
   log.trials.push_back(trial);
   store::WriteRealTrialLog(session_->RealTrialsPath(run.method), log);

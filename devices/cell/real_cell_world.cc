@@ -200,8 +200,11 @@ PlaySample RealCellWorld::SamplePlay() {
   return PlaySample{o.x, o.y, BeaconReading()};
 }
 
-std::string RealCellWorld::MetricName() const {
-  return "not measured in a real cell (the teacher judges the outcome)";
+worlds::WorldTraits RealCellWorld::Traits() const {
+  worlds::WorldTraits traits;
+  traits.metric_name = "not measured in a real cell (the teacher judges the outcome)";
+  traits.step_seconds = kControlPeriod_s;
+  return traits;
 }
 
 }  // namespace recon::cell

@@ -83,9 +83,8 @@ class RealCellWorld : public worlds::World {
   int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
   /// Not measured in a real cell: always 0.
   double EpisodeMetric() const override { return 0.0; }
-  bool HigherIsBetter() const override { return false; }
-  std::string MetricName() const override;
-  double StepSeconds() const override { return kControlPeriod_s; }
+  /// No metric (the teacher judges a trial), 10 Hz.
+  worlds::WorldTraits Traits() const override;
 
   const RealCellWorldOptions& options() const { return options_; }
 

@@ -102,12 +102,8 @@ class BinTransfer : public World {
   /// of a rollout. Experiments instead score actions along the expert's demonstrations (the
   /// paper's metric, ScoresActions()), which MetricName describes.
   double EpisodeMetric() const override;
-  bool HigherIsBetter() const override { return false; }
-  std::string MetricName() const override;
-  std::string MetricKey() const override { return "action_mse"; }
-  bool ScoresActions() const override { return true; }
-  bool HasSuccess() const override { return true; }
-  double StepSeconds() const override { return 0.1; }
+  /// Action MSE against the expert, lower is better; success; 10 Hz.
+  WorldTraits Traits() const override;
   /// The target is released and lies inside the right bin (centre within its inner footprint,
   /// below its wall top).
   bool TaskSucceeded() const override;

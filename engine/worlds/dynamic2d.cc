@@ -242,8 +242,12 @@ double Dynamic2D::EpisodeMetric() const {
   return Distance(state_.robot, state_.objects[state_.red]);
 }
 
-std::string Dynamic2D::MetricName() const {
-  return "final distance between the robot and the red object (reward, higher is better)";
+WorldTraits Dynamic2D::Traits() const {
+  WorldTraits traits;
+  traits.metric_name =
+      "final distance between the robot and the red object (reward, higher is better)";
+  traits.higher_is_better = true;
+  return traits;
 }
 
 std::unique_ptr<World> MakeDynamic2D(const Dynamic2DOptions& options) {

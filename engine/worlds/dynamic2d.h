@@ -74,8 +74,8 @@ class Dynamic2D : public World {
   int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
   /// Robot-red distance; once kScoredSteps steps have run, the distance at that moment.
   double EpisodeMetric() const override;
-  bool HigherIsBetter() const override { return true; }
-  std::string MetricName() const override;
+  /// The final distance to the red object, higher is better (a reward: the robot flees it).
+  WorldTraits Traits() const override;
 
   const Dynamic2DOptions& options() const { return options_; }
   const Dynamic2DState& state() const { return state_; }

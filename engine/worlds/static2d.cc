@@ -150,8 +150,10 @@ double Static2D::EpisodeMetric() const {
   return Distance(state_.robot, state_.objects[state_.centre]);
 }
 
-std::string Static2D::MetricName() const {
-  return "final distance between the robot and the centre object (lower is better)";
+WorldTraits Static2D::Traits() const {
+  WorldTraits traits;
+  traits.metric_name = "final distance between the robot and the centre object (lower is better)";
+  return traits;
 }
 
 std::unique_ptr<World> MakeStatic2D(const Static2DOptions& options) {

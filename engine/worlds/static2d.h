@@ -65,8 +65,8 @@ class Static2D : public World {
   PlaySample SamplePlay() override;
   int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
   double EpisodeMetric() const override;
-  bool HigherIsBetter() const override { return false; }
-  std::string MetricName() const override;
+  /// The final distance to the centre object, lower is better.
+  WorldTraits Traits() const override;
 
   const Static2DOptions& options() const { return options_; }
   const Static2DState& state() const { return state_; }

@@ -306,7 +306,13 @@ PlaySample Tabletop::SamplePlay() {
 
 double Tabletop::EpisodeMetric() const { return PlanarDistance(ToastPosition(), PlatePosition()); }
 
-std::string Tabletop::MetricName() const { return "final toast-to-plate distance (m)"; }
+WorldTraits Tabletop::Traits() const {
+  WorldTraits traits;
+  traits.metric_name = "final toast-to-plate distance (m)";
+  traits.has_success = true;
+  traits.step_seconds = kControlPeriod_s;
+  return traits;
+}
 
 bool Tabletop::TaskSucceeded() const {
   const Eigen::Vector3d toast = ToastPosition();

@@ -92,12 +92,10 @@ class Tabletop : public World {
   int PlaySamplesPerScenario() const override { return kPlayPerScenario; }
   /// Final distance from the toast to the plate centre in the table plane, metres.
   double EpisodeMetric() const override;
-  bool HigherIsBetter() const override { return false; }
-  std::string MetricName() const override;
-  bool HasSuccess() const override { return true; }
   /// The toast is on the plate and the arm has risen back above it: a teacher stops there.
   bool DemonstrationDone() const override;
-  double StepSeconds() const override { return kControlPeriod_s; }
+  /// The toast's final distance to the plate, lower is better; success; 10 Hz.
+  WorldTraits Traits() const override;
   /// The toast lies on the plate, released.
   bool TaskSucceeded() const override;
   /// "toast_moved" (the toast left its pick-up place by more than 3 cm), "toast_held" (still in

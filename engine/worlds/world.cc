@@ -83,4 +83,10 @@ double Rollout(World& world, uint64_t seed, const PolicyFn& policy) {
   return world.EpisodeMetric();
 }
 
+std::string World::MetricKey() const {
+  const WorldTraits traits = Traits();
+  if (!traits.metric_key.empty()) return traits.metric_key;
+  return traits.higher_is_better ? "reward" : "distance";
+}
+
 }  // namespace recon::worlds

@@ -20,6 +20,29 @@ struct Observation {
   std::vector<float> y;
 };
 
+/// What kind of task a world is: what its metric means and which capabilities it has, one struct
+/// per world (World::Traits) rather than a virtual method per flag, so a new capability is a
+/// field with a default instead of another method every world must consider.
+struct WorldTraits {
+  /// Name and unit of the metric, e.g. "final distance to the red object".
+  std::string metric_name;
+  /// The metric's short name for tables and JSON ("distance", "reward", "action_mse"); empty:
+  /// "reward" when higher_is_better, else "distance".
+  std::string metric_key;
+  /// A larger metric is better (reward); otherwise a smaller one is (distance, error).
+  bool higher_is_better = false;
+  /// The task has a notion of success (the robot worlds), which experiments then report as a
+  /// success rate beside the metric.
+  bool has_success = false;
+  /// A policy is scored by its action error along the expert's own demonstration of each test
+  /// scenario (the paper's BinTransfer metric: action MSE against the expert) instead of by the
+  /// outcome of its own rollout.
+  bool scores_actions = false;
+  /// Seconds of teaching one step stands for (the control period of a robot world, whose
+  /// demonstrations cost the teacher real time); 0 for the abstract 2-D worlds.
+  double step_seconds = 0.0;
+};
+
 /// A task the robot is taught: scenarios, dynamics, an expert, beacons and a score.
 ///
 /// A World is configured with one beacon placement at construction (the placement decides
@@ -72,22 +95,19 @@ class World {
 
   /// The score of the current state at the end of a rollout.
   virtual double EpisodeMetric() const = 0;
-  /// True when a larger metric is better (reward), false when smaller is (distance, error).
-  virtual bool HigherIsBetter() const = 0;
-  /// Name and unit of the metric, e.g. "final distance to the red object".
-  virtual std::string MetricName() const = 0;
-  /// The metric's short name for tables and JSON, e.g. "distance", "reward", "action_mse".
-  virtual std::string MetricKey() const { return HigherIsBetter() ? "reward" : "distance"; }
+  /// What kind of task this is (WorldTraits); the shorthands below read it.
+  virtual WorldTraits Traits() const = 0;
+  bool HigherIsBetter() const { return Traits().higher_is_better; }
+  std::string MetricName() const { return Traits().metric_name; }
+  /// WorldTraits::metric_key, or its default from higher_is_better.
+  std::string MetricKey() const;
+  bool HasSuccess() const { return Traits().has_success; }
+  bool ScoresActions() const { return Traits().scores_actions; }
+  double StepSeconds() const { return Traits().step_seconds; }
   /// True when the demonstrator has finished in the current state, so recording stops before
   /// EpisodeLength() (a teacher stops the recording once the task is done, rather than recording
   /// the arm standing still). Rollouts always run EpisodeLength() steps. Default: never.
   virtual bool DemonstrationDone() const { return false; }
-  /// Seconds of teaching one step stands for (the control period of a robot world, whose
-  /// demonstrations cost the teacher real time); 0 for the abstract 2-D worlds.
-  virtual double StepSeconds() const { return 0.0; }
-  /// True for tasks with a notion of success (the robot worlds), which experiments then report as
-  /// a success rate beside the metric.
-  virtual bool HasSuccess() const { return false; }
   /// Whether the task is done in the current state (false when !HasSuccess()).
   virtual bool TaskSucceeded() const { return false; }
   /// Named facts about the end state that explain an outcome, each a number averaged over test
@@ -97,11 +117,6 @@ class World {
   /// Where the scene's movable objects stand (table x, y in metres), by name: what a person sets
   /// up to give a real cell this scene. Empty where the world has no such objects (the default).
   virtual std::map<std::string, std::array<double, 2>> ObjectLayout() const { return {}; }
-  /// True when a policy is scored by its action error along the expert's own demonstration of
-  /// each test scenario (the paper's BinTransfer metric: action MSE against the expert) instead
-  /// of by the outcome of its own rollout.
-  virtual bool ScoresActions() const { return false; }
-
   /// What it takes to draw the current step again later (a rollout played back frame by frame
   /// beside another on the same scene), as a vector of a fixed size per world configuration;
   /// empty when the world has no replay (the default).

@@ -11,6 +11,7 @@
 #include <chrono>
 
 #include "devices/teleop/sdl_gamepad.h"
+#include "tests/devices/sdl_virtual_pad.h"
 
 namespace recon::studio {
 namespace {
@@ -19,14 +20,7 @@ using ::testing::HasSubstr;
 
 TEST(GamepadSourceTest, FindsAnSdlPadDrivesTheTeleopAndReportsItUnplugged) {
   teleop::StartSdlGamepads();
-  SDL_VirtualJoystickDesc desc{};
-  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-  desc.type = SDL_JOYSTICK_TYPE_GAMECONTROLLER;
-  desc.naxes = SDL_CONTROLLER_AXIS_MAX;
-  desc.nbuttons = SDL_CONTROLLER_BUTTON_MAX;
-  desc.axis_mask = (1u << SDL_CONTROLLER_AXIS_MAX) - 1;
-  desc.button_mask = (1u << SDL_CONTROLLER_BUTTON_MAX) - 1;
-  desc.name = "studio test pad";
+  const SDL_VirtualJoystickDesc desc = teleop::testing::StandardPadDesc("studio test pad");
   const int index = SDL_JoystickAttachVirtualEx(&desc);
   ASSERT_GE(index, 0) << SDL_GetError();
   SDL_Joystick* joystick = SDL_JoystickOpen(index);

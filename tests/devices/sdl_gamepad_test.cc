@@ -12,6 +12,8 @@
 #include <array>
 #include <string>
 
+#include "tests/devices/sdl_virtual_pad.h"
+
 namespace recon::teleop {
 namespace {
 
@@ -44,21 +46,8 @@ class VirtualPad {
   SDL_Joystick* joystick_ = nullptr;
 };
 
-/// The standard layout: SDL maps a virtual game controller's axes and buttons in SDL's order.
-SDL_VirtualJoystickDesc StandardPadDesc() {
-  SDL_VirtualJoystickDesc desc{};
-  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-  desc.type = SDL_JOYSTICK_TYPE_GAMECONTROLLER;
-  desc.naxes = SDL_CONTROLLER_AXIS_MAX;
-  desc.nbuttons = SDL_CONTROLLER_BUTTON_MAX;
-  desc.axis_mask = (1u << SDL_CONTROLLER_AXIS_MAX) - 1;
-  desc.button_mask = (1u << SDL_CONTROLLER_BUTTON_MAX) - 1;
-  desc.name = "virtual standard pad";
-  return desc;
-}
-
 TEST(SdlGamepadTest, AStandardPadDrivesTheTeleop) {
-  VirtualPad virtual_pad(StandardPadDesc());
+  VirtualPad virtual_pad(testing::StandardPadDesc("virtual standard pad"));
   std::unique_ptr<SdlGamepad> pad = SdlGamepad::OpenFirst();
   ASSERT_NE(pad, nullptr);
   EXPECT_EQ(pad->name(), "virtual standard pad");
