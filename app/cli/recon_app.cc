@@ -9,6 +9,7 @@
 #include "app/cli/robot_command.h"
 #include "app/cli/session_command.h"
 #include "app/cli/train_commands.h"
+#include "app/cli/twin_command.h"
 #include "app/cli/uwb_command.h"
 
 namespace recon::cli {
@@ -28,6 +29,7 @@ void BuildReconApp(CLI::App& app, GlobalOptions& global) {
   AddUwbCommand(app);
   AddCameraCommand(app);
   AddRobotCommand(app);
+  AddTwinCommand(app);
   AddDevicesCommand(app);
 }
 

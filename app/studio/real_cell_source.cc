@@ -72,9 +72,11 @@ bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
   } catch (const UserError&) {
     // Capture is failing (the camera row says why): the last frame shown stays.
   }
+  const bool new_frame = frame && frame->sequence != shown_frame_;
   if (frame) {
     s.camera = frame->image;
     s.camera_frame = static_cast<uint64_t>(frame->sequence) + 1;
+    shown_frame_ = frame->sequence;
   }
   for (const char* object : {"plate", "bowl", "toast"}) {
     ui::ObjectView view;
@@ -92,7 +94,7 @@ bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
   if (const std::optional<Eigen::Vector3d> grip = GripPoint()) {
     if (auto px = TablePixel(*grip)) s.grip_pixel = *px;
   }
-  return frame != nullptr;
+  return new_frame;  // the camera's rate counts frames, not snapshots
 }
 
 void RealCellSource::ShowArm(const worlds::World&, ui::StudioSnapshot& s) const {

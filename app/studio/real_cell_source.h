@@ -81,6 +81,7 @@ class RealCellSource final : public CellSource {
   std::unique_ptr<cell::RealCell> cell_;
   std::unique_ptr<cell::GuidedCalibration> guided_;
   int64_t guided_frame_ = -1;  // the last frame the calibration looked at
+  int64_t shown_frame_ = -1;   // the last frame ShowLive showed
 };
 
 }  // namespace recon::studio

@@ -33,19 +33,22 @@ int Require(const mjModel* m, mjtObj type, const char* name) {
 }
 
 Eigen::Vector2d ReadPosition(const json& value, const std::string& path, const char* object) {
-  const std::string where = path + ": " + object;
   if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
-    throw UserError(where + ": expected [x, y] in metres");
+    throw UserError(path + ": " + object + ": expected [x, y] in metres");
   }
   const Eigen::Vector2d p(value[0].get<double>(), value[1].get<double>());
-  if (!p.allFinite() || p.x() < kTableMinX || p.x() > kTableMaxX || std::abs(p.y()) > kTableHalfY) {
-    throw UserError(where + ": (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
-                    ") is off the table (x 0 to 1 m, y -0.6 to 0.6 m)");
-  }
+  CheckOnTable(p, path + ": " + object);
   return p;
 }
 
 }  // namespace
+
+void CheckOnTable(const Eigen::Vector2d& p, const std::string& what) {
+  if (!p.allFinite() || p.x() < kTableMinX || p.x() > kTableMaxX || std::abs(p.y()) > kTableHalfY) {
+    throw UserError(what + ": (" + std::to_string(p.x()) + ", " + std::to_string(p.y()) +
+                    ") is off the table (x 0 to 1 m, y -0.6 to 0.6 m)");
+  }
+}
 
 TwinLayout ReadTwinLayout(const std::string& path) {
   const std::optional<std::string> text = ReadWholeFile(path);

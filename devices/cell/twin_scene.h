@@ -23,6 +23,8 @@ struct TwinLayout {
 /// scene's place). UserError naming the file and the field for a missing file, bad JSON, an
 /// unknown object, a position that is not two finite numbers or that lies off the table.
 TwinLayout ReadTwinLayout(const std::string& path);
+/// UserError "<what>: (x, y) is off the table ..." unless `p` lies on the table top.
+void CheckOnTable(const Eigen::Vector2d& p, const std::string& what);
 /// Writes `layout` as ReadTwinLayout reads it, atomically (a reader sees the old or the new one).
 void WriteTwinLayout(const std::string& path, const TwinLayout& layout);
 

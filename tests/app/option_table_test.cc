@@ -76,6 +76,7 @@ std::vector<OptionCase> NumericOptions() {
   const std::string pose = "camera pose --device " + camera + " --calibration " +
                            (out / "c.yaml").string() + " --tags " + (out / "t.json").string() + " ";
   const std::string robot = "robot status --host 127.0.0.1 ";
+  const std::string twin = "twin up " + (out / "twin").string() + " ";
   std::vector<OptionCase> cases;
   for (const char* world : {"dynamic2d", "static2d", "bintransfer", "tabletop"}) {
     const std::string exp =
@@ -135,6 +136,8 @@ std::vector<OptionCase> NumericOptions() {
       {robot, "--rtde-port", true},
       {robot, "--script-port", true},
       {robot, "--seconds", false},
+      {twin, "--seed", true},
+      {twin, "--seconds", false},
       {"devices list ", "--serial-timeout-ms", true},
       {"uwb monitor ", "--count", true},
       {"uwb monitor ", "--fake", true},
