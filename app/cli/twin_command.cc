@@ -1,7 +1,6 @@
 #include "app/cli/twin_command.h"
 
 #include <signal.h>
-#include <sys/stat.h>
 
 #include <atomic>
 #include <chrono>
@@ -9,18 +8,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <thread>
 
 #include "app/cli/option_checks.h"
+#include "devices/cell/twin_beacon.h"
 #include "devices/cell/twin_cell.h"
 #include "devices/cell/twin_scene.h"
 #include "devices/robot/fake_ur_controller.h"
 #include "devices/sim/hidden_uwb_frame.h"
-#include "devices/uwb/fake_dwm1001.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/rng.h"
 
 namespace recon::cli {
@@ -64,15 +63,6 @@ Eigen::Vector2d ParsePlace(const std::string& text, const std::string& option) {
   return p;
 }
 
-/// The layout file's identity: a replaced file has a new inode or time.
-std::optional<std::pair<uint64_t, int64_t>> Version(const std::string& path) {
-  struct stat info {};
-  if (::stat(path.c_str(), &info) != 0) return std::nullopt;
-  return std::make_pair(
-      static_cast<uint64_t>(info.st_ino),
-      static_cast<int64_t>(info.st_mtim.tv_sec) * 1000000000 + info.st_mtim.tv_nsec);
-}
-
 void RunUp(const UpFlags& flags) {
   const fs::path dir(flags.dir);
   fs::create_directories(dir);
@@ -84,25 +74,13 @@ void RunUp(const UpFlags& flags) {
 
   // The beacon beside the plate, as the installation's anchors (a hidden frame) measure it.
   Rng frame_rng(Rng::Derive(flags.seed, kFrameStream));
-  const calib::RigidTransform hidden = sim::DrawHiddenUwbFrame(frame_rng);
-  std::mutex mutex;
-  Eigen::Vector3d beacon_table = scene.BeaconPosition();
-  Rng noise(Rng::Derive(flags.seed, kNoiseStream));
-  uwb::FakeDwm1001::Options beacon_options;
+  cell::TwinBeaconOptions beacon_options;
   beacon_options.node_id = kPlateBeaconId;
-  beacon_options.next_reading = [&] {
-    std::lock_guard lock(mutex);
-    const Eigen::Vector3d p = hidden.Apply(beacon_table);
-    uwb::UwbReading r;
-    r.has_position = true;
-    r.x_m = p.x() + noise.Uniform(-kBeaconNoise_m, kBeaconNoise_m);
-    r.y_m = p.y() + noise.Uniform(-kBeaconNoise_m, kBeaconNoise_m);
-    r.z_m = p.z();
-    r.quality = 90;
-    return r;
-  };
+  beacon_options.table_to_uwb = sim::DrawHiddenUwbFrame(frame_rng);
+  beacon_options.noise_m = kBeaconNoise_m;
+  beacon_options.seed = Rng::Derive(flags.seed, kNoiseStream);
   robot::FakeUrController robot;
-  uwb::FakeDwm1001 beacon(beacon_options);
+  cell::TwinBeacon beacon(scene.BeaconPosition(), beacon_options);
 
   cell::TwinCellDevices devices;
   devices.rtde_port = robot.rtde_port();
@@ -128,20 +106,19 @@ void RunUp(const UpFlags& flags) {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   const auto started = std::chrono::steady_clock::now();
-  auto version = Version(layout_path);
+  std::optional<FileStamp> stamp = StampOf(layout_path);
   while (!stop_requested) {
     if (flags.seconds > 0 && std::chrono::steady_clock::now() - started >=
                                  std::chrono::duration<double>(flags.seconds)) {
       break;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    const auto now = Version(layout_path);
-    if (now == version) continue;
-    version = now;
+    const std::optional<FileStamp> now = StampOf(layout_path);
+    if (now == stamp) continue;
+    stamp = now;
     try {
       scene.Arrange(cell::ReadTwinLayout(layout_path));
-      std::lock_guard lock(mutex);
-      beacon_table = scene.BeaconPosition();
+      beacon.MoveTo(scene.BeaconPosition());
     } catch (const UserError& e) {
       // A layout edited by hand and broken: say so, keep the last good one.
       std::fprintf(stderr, "recon twin: %s; the objects stay where they were\n", e.what());

@@ -1,9 +1,7 @@
 #include "devices/cell/twin_camera.h"
 
-#include <sys/stat.h>
 #include <algorithm>
 #include <chrono>
-
 #include <system_error>
 #include <thread>
 #include <utility>
@@ -12,6 +10,7 @@
 #include "devices/render/mujoco_renderer.h"
 #include "devices/robot/rtde_client.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace recon::cell {
 
@@ -39,18 +38,11 @@ TwinCamera::TwinCamera(TwinCameraOptions options, const devices::Clock& clock)
 TwinCamera::~TwinCamera() = default;
 
 void TwinCamera::FollowLayout() {
-  // The file is replaced whole (WriteTwinLayout renames a new one over it): a new inode or a new
-  // time says it changed, whatever the file system's time resolution.
-  struct stat info {};
-  if (::stat(options_.layout_file.c_str(), &info) != 0) {
-    throw UserError(options_.layout_file + ": cannot read the twin's layout (missing)");
-  }
-  const LayoutVersion version{static_cast<uint64_t>(info.st_ino),
-                              static_cast<int64_t>(info.st_mtim.tv_sec),
-                              static_cast<int64_t>(info.st_mtim.tv_nsec)};
-  if (layout_version_ && *layout_version_ == version) return;
+  const std::optional<FileStamp> stamp = StampOf(options_.layout_file);
+  if (!stamp) throw UserError(options_.layout_file + ": cannot read the twin's layout (missing)");
+  if (layout_stamp_ == stamp) return;
   scene_->Arrange(ReadTwinLayout(options_.layout_file));
-  layout_version_ = version;
+  layout_stamp_ = stamp;
 }
 
 void TwinCamera::FollowArm() {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "engine/core/files.h"
 #include "engine/devices/camera.h"
 #include "engine/devices/clock.h"
 #include "engine/worlds/scene_renderer.h"
@@ -63,13 +64,7 @@ class TwinCamera final : public devices::Camera {
   std::unique_ptr<worlds::SceneRenderer> renderer_;
   std::unique_ptr<robot::RtdeClient> rtde_;
   double next_connect_s_ = 0;
-  /// Which layout file was read last: its inode and modification time.
-  struct LayoutVersion {
-    uint64_t inode = 0;
-    int64_t seconds = 0, nanoseconds = 0;
-    bool operator==(const LayoutVersion& other) const = default;
-  };
-  std::optional<LayoutVersion> layout_version_;
+  std::optional<FileStamp> layout_stamp_;  ///< of the layout file read last
   int64_t next_sequence_ = 0;
   double next_frame_s_ = 0;
 };

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,17 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 /// that are themselves temporaries. On failure the part written is removed and a UserError says
 /// "cannot write <path>: <the system's reason>".
 void WriteWholeFile(const std::string& path, const std::string& content);
+
+/// Which file is at a path and when it was last written: a file replaced whole (renamed over, as
+/// WriteFileAtomically does) has a new inode, so a change shows whatever the file system's time
+/// resolution.
+struct FileStamp {
+  uint64_t inode = 0;
+  int64_t modified_ns = 0;
+  bool operator==(const FileStamp& other) const = default;
+};
+/// The stamp of the file at `path`; nullopt when there is none.
+std::optional<FileStamp> StampOf(const std::string& path);
 
 /// The whole content of the file at `path`, byte for byte; nullopt when it cannot be opened
 /// (missing or unreadable), so that each caller names what the file was for.

@@ -14,7 +14,6 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
-#include <mutex>
 #include <thread>
 
 #include "app/cli/result_staleness.h"
@@ -165,7 +164,7 @@ TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
 }
 
 TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJudgedOne) {
-  calib::SaveCalibration(rig_->beacon->Calibration(), (dir_ / "cal.json").string());
+  calib::SaveCalibration(testing::TwinCalibration(), (dir_ / "cal.json").string());
   StudioOptions options = Options();
   options.calibration_file = (dir_ / "cal.json").string();
   options.train_steps = 20;

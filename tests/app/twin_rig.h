@@ -8,81 +8,49 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
+#include "devices/cell/twin_beacon.h"
 #include "devices/cell/twin_cell.h"
 #include "devices/cell/twin_scene.h"
 #include "devices/robot/fake_ur_controller.h"
-#include "devices/uwb/fake_dwm1001.h"
 #include "engine/calib/calibration.h"
-#include "engine/core/rng.h"
 #include "ui/studio/studio_snapshot.h"
 
 namespace recon::studio::testing {
 
 inline constexpr uint64_t kTwinPlateBeaconId = 0xDECA0000000000A1ull;
 
-/// The plate's beacon in the twin: where the layout puts the plate, as the installation's UWB
-/// anchors measure it (a hidden frame 2 m off and turned 30 degrees), with +-1 cm of noise.
-class TwinBeacon {
- public:
-  explicit TwinBeacon(const Eigen::Vector3d& table_m) : table_m_(table_m) {
-    uwb::FakeDwm1001::Options options;
-    options.period_ms = 50;
-    options.node_id = kTwinPlateBeaconId;
-    options.next_reading = [this] {
-      std::lock_guard lock(mutex_);
-      uwb::UwbReading r;
-      r.has_position = !silent_;
-      const Eigen::Vector3d p = hidden_.Apply(table_m_);
-      r.x_m = p.x() + noise_.Uniform(-0.01, 0.01);
-      r.y_m = p.y() + noise_.Uniform(-0.01, 0.01);
-      r.z_m = p.z();
-      r.quality = 90;
-      return r;
-    };
-    fake_ = std::make_unique<uwb::FakeDwm1001>(options);
-  }
-  ~TwinBeacon() { fake_.reset(); }  // its thread calls back into this object
+/// The installation's UWB frame in the studio's twin tests: anchors 2 m off, turned 30 degrees.
+inline calib::RigidTransform TwinUwbFrame() {
+  return {Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()).matrix(),
+          Eigen::Vector3d(2.0, -1.0, 0.3)};
+}
 
-  void MoveTo(const Eigen::Vector3d& table_m) {
-    std::lock_guard lock(mutex_);
-    table_m_ = table_m;
+/// A calibration that knows the hidden frame (what a good calibration recovers).
+inline calib::CalibrationReport TwinCalibration() {
+  std::vector<calib::CalibrationPoint> points;
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0.3, -0.3, 0.02), Eigen::Vector3d(0.8, -0.2, 0.02),
+        Eigen::Vector3d(0.7, 0.3, 0.02), Eigen::Vector3d(0.4, 0.25, 0.02)}) {
+    points.push_back({p, TwinUwbFrame().Apply(p)});
   }
-  void Silence(bool silent) {
-    std::lock_guard lock(mutex_);
-    silent_ = silent;
-  }
-  const std::string& port() const { return fake_->port(); }
-  /// A calibration that knows the hidden frame (what a good calibration recovers).
-  calib::CalibrationReport Calibration() const {
-    std::vector<calib::CalibrationPoint> points;
-    for (const Eigen::Vector3d& p :
-         {Eigen::Vector3d(0.3, -0.3, 0.02), Eigen::Vector3d(0.8, -0.2, 0.02),
-          Eigen::Vector3d(0.7, 0.3, 0.02), Eigen::Vector3d(0.4, 0.25, 0.02)}) {
-      points.push_back({p, hidden_.Apply(p)});
-    }
-    return calib::Calibrate(points);
-  }
-
- private:
-  const calib::RigidTransform hidden_{Eigen::AngleAxisd(0.52, Eigen::Vector3d::UnitZ()).matrix(),
-                                      Eigen::Vector3d(2.0, -1.0, 0.3)};
-  std::mutex mutex_;
-  Eigen::Vector3d table_m_;
-  bool silent_ = false;
-  Rng noise_{31};  // seed 31: the readings' noise
-  std::unique_ptr<uwb::FakeDwm1001> fake_;
-};
+  return calib::Calibrate(points);
+}
 
 /// The twin's devices and profile in `folder`, the bowl out of the beacon's way.
 struct TwinRig {
   explicit TwinRig(const std::filesystem::path& dir) : folder(dir) {
     layout.bowl = {0.12, 0.0};
     scene.Arrange(layout);
-    beacon = std::make_unique<TwinBeacon>(scene.BeaconPosition());
+    cell::TwinBeaconOptions beacon_options;
+    beacon_options.node_id = kTwinPlateBeaconId;
+    beacon_options.table_to_uwb = TwinUwbFrame();
+    beacon_options.noise_m = 0.01;
+    beacon_options.seed = 31;  // the readings' noise
+    beacon_options.period_ms = 50;
+    beacon = std::make_unique<cell::TwinBeacon>(scene.BeaconPosition(), beacon_options);
     robot = std::make_unique<robot::FakeUrController>();
     cell::TwinCellDevices devices;
     devices.rtde_port = robot->rtde_port();
@@ -121,7 +89,7 @@ struct TwinRig {
   std::filesystem::path folder;
   cell::TwinLayout layout;
   cell::TwinScene scene;
-  std::unique_ptr<TwinBeacon> beacon;
+  std::unique_ptr<cell::TwinBeacon> beacon;
   std::unique_ptr<robot::FakeUrController> robot;
   std::string profile;
 };
