@@ -9,6 +9,7 @@
 
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
+#include "engine/safety/guarded_arm.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
 #include "engine/teach/recorder.h"
@@ -28,8 +29,7 @@ struct ViewSize {
 /// Where the studio's cell comes from: the simulated tabletop (a MuJoCo world with its own
 /// camera, beacons and scripted teacher) or a real cell's devices (camera, beacons, UR5). The
 /// studio's controller talks to the cell only through this, so every screen and command has one
-/// code path for both; what differs lives in the two implementations. Cell thread only, except
-/// EmergencyStop.
+/// code path for both; what differs lives in the two implementations. Cell thread only.
 class CellSource {
  public:
   virtual ~CellSource() = default;
@@ -50,9 +50,6 @@ class CellSource {
 
   /// Whether the scripted teacher can demonstrate here (the simulated cell only).
   virtual bool HasScriptedTeacher() const = 0;
-  /// A person's teacher: `*command`'s grip velocity as the arm's joint velocities.
-  virtual teach::Teacher PersonTeacher(worlds::World& world,
-                                       const teach::TeleopCommand* command) = 0;
   /// The grip point's table velocity for a teleop input, `speed_m_s` at full deflection: the
   /// arrows move the arm the way the teacher sees it move on screen, in the teacher's 3-D view
   /// (`teacher_view`) where the cell has one, else in the live camera view (`view`).
@@ -84,13 +81,13 @@ class CellSource {
   /// The cell's device rows (a real cell's live status); the simulated cell's come from the
   /// session's manifest.
   virtual void ShowDevices(ui::StudioSnapshot& s) const = 0;
-  /// The envelope the arm's commands pass and what it changed so far (`world`: the session's,
-  /// null before one is open). `estop` and its reason are the studio's; a real arm's own latch
-  /// overrides them.
-  virtual void ShowSafety(const worlds::World* world, ui::SafetyView& view) const = 0;
-  /// Engages or releases the arm's e-stop (the simulated arm moves only while the studio steps
-  /// it, so the studio's own latch is enough there).
-  virtual void EmergencyStop(bool engage, const std::string& reason) = 0;
+  /// The cell's arm behind its guard (the safety envelope, the watchdog and the e-stop): the
+  /// simulated UR5 of `world` (the session's; null before one is open, and then so is this), or
+  /// a real cell's UR5 whether a session is open or not. The studio teleoperates it, stops it
+  /// and shows what the envelope did through this one mechanism for both. Null where the cell
+  /// has no arm. Any thread may use the guard (it is thread-safe); the pointer itself is valid
+  /// while `world` and the source are.
+  virtual safety::GuardedArm* GuardedArmOf(worlds::World* world) const = 0;
 
   /// Whether the teacher paces the calibration, moving the beacon place by place (a real cell,
   /// cell::GuidedCalibration), rather than the cell running it by itself as a job (the
@@ -103,7 +100,8 @@ class CellSource {
   /// One pass of the guided calibration: reads the camera and the beacons (nothing else reads
   /// the beacons meanwhile), fills `view`'s live fields and returns the fit once every place
   /// is taken (then the run is over). UserError when the fit cannot be made.
-  virtual std::optional<calib::CalibrationReport> StepGuidedCalibration(ui::CalibrationView&) {
+  virtual std::optional<calib::CalibrationReport> StepGuidedCalibration(
+      ui::GuidedCalibrationView&) {
     return std::nullopt;
   }
   virtual void StopGuidedCalibration() {}

@@ -122,18 +122,6 @@ void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {
   s.devices = std::move(rows);
 }
 
-void RealCellSource::ShowSafety(const worlds::World*, ui::SafetyView& view) const {
-  const safety::GuardedArm* arm = cell_->arm();
-  if (arm == nullptr) return;
-  const safety::SafetyStats stats = arm->stats();
-  view.limits = safety::DescribeLimits(arm->envelope().limits());
-  // The arm's own latch is what holds the robot: show it, not what the studio asked for.
-  view.estop = arm->emergency_stopped();
-  view.estop_reason = arm->emergency_stop_reason();
-  view.commands = stats.commands;
-  view.changed = stats.changed;
-}
-
 Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
                                                ViewSize, const worlds::OrbitCamera&,
                                                double speed_m_s) const {
@@ -145,30 +133,6 @@ Eigen::Vector3d RealCellSource::TeleopVelocity(worlds::World&, const ui::TeleopI
   if (velocity.head<2>().norm() > 1.0) velocity.head<2>().normalize();
   velocity.z() = std::clamp(velocity.z(), -1.0, 1.0);
   return velocity * speed_m_s;
-}
-
-teach::Teacher RealCellSource::PersonTeacher(worlds::World& world,
-                                             const teach::TeleopCommand* command) {
-  safety::GuardedArm* arm = cell_->arm();
-  if (arm == nullptr) throw UserError(cell_->profile().path + ": the profile names no robot");
-  // The simulated cell's teleop (engine/teach/cartesian_teleop.h), on this arm's joints and
-  // envelope; the guarded arm then judges every command.
-  const safety::SafetyLimits& limits = arm->envelope().limits();
-  teach::TeleopArm teleop_arm;
-  teleop_arm.base_in_table = limits.base_in_table;
-  teleop_arm.tool_offset_m = limits.tool_offset_m;
-  return teach::CartesianTeleopTeacher([arm] { return arm->State().position_rad; }, command,
-                                       teleop_arm, world.StepSeconds());
-}
-
-void RealCellSource::EmergencyStop(bool engage, const std::string& reason) {
-  safety::GuardedArm* arm = cell_->arm();
-  if (arm == nullptr) return;
-  if (engage) {
-    arm->EngageEmergencyStop(reason);
-  } else {
-    arm->ReleaseEmergencyStop();
-  }
 }
 
 std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::World& world,
@@ -191,64 +155,6 @@ std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::Worl
   }
   if (reading.empty()) return std::nullopt;
   return reading;
-}
-
-void RealCellSource::StartGuidedCalibration(int points) {
-  if (!cell_->camera_pose()) {
-    throw UserError("cannot calibrate: the camera's pose in the table frame is unknown (" +
-                    cell_->camera_pose_error() +
-                    "); the camera must see the table's corner tags when the studio opens the "
-                    "cell, so clear them and restart the studio");
-  }
-  const cell::BeaconTagProfile& tag = cell_->profile().beacon_tag;
-  cell::GuidedCalibrationOptions options;
-  options.points = points;
-  options.beacon = "plate";  // the beacon the task reads (RealCellWorldOptions::plate_beacon)
-  options.beacon_tag_id = tag.id;
-  options.beacon_tag = {tag.size_m, tag.height_m};
-  guided_ = std::make_unique<cell::GuidedCalibration>(cell_->camera_pose()->camera, options);
-  guided_frame_ = -1;
-}
-
-std::optional<calib::CalibrationReport> RealCellSource::StepGuidedCalibration(
-    ui::CalibrationView& view) {
-  if (!guided_) return std::nullopt;
-  std::shared_ptr<const devices::CameraFrame> frame;
-  std::string camera_error;
-  try {
-    frame = cell_->LatestFrame();
-  } catch (const UserError& e) {
-    camera_error = e.what();  // said in the prompt; the calibration goes on when it is back
-  }
-  const RgbImage* image = nullptr;
-  if (frame && frame->sequence != guided_frame_) {
-    guided_frame_ = frame->sequence;
-    image = &frame->image;
-  }
-  guided_->Update(image, cell_->beacons().Poll(), cell_->clock().NowSeconds());
-  const cell::GuidedCalibrationStatus& status = guided_->status();
-  view.guided = true;
-  view.points_collected = status.taken;
-  view.points_target = status.total;
-  view.prompt =
-      camera_error.empty() ? status.prompt : "The camera is not delivering: " + camera_error;
-  view.tag_seen = status.tag_seen && camera_error.empty();
-  view.tag_pixel = status.tag_pixel;
-  view.taken_pixel.clear();
-  for (const cell::CollectedPose& pose : guided_->poses()) {
-    const Eigen::Vector2d px = cell_->camera_pose()->camera.Project(pose.point.tag_m);
-    view.taken_pixel.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
-  }
-  view.beacon_uwb_m.clear();
-  if (status.beacon_uwb_m) {
-    for (int i = 0; i < 3; ++i)
-      view.beacon_uwb_m.push_back(static_cast<float>((*status.beacon_uwb_m)[i]));
-  }
-  view.beacon_silent = status.beacon_silent;
-  view.held_fraction = static_cast<float>(status.held_fraction);
-  if (!guided_->Done()) return std::nullopt;
-  const std::unique_ptr<cell::GuidedCalibration> done = std::move(guided_);
-  return done->Fit();
 }
 
 std::optional<std::array<float, 2>> RealCellSource::TablePixel(const Eigen::Vector3d& p) const {

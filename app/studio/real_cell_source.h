@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/studio/cell_source.h"
+#include "devices/cell/arm_calibration.h"
 #include "devices/cell/guided_calibration.h"
 #include "devices/cell/real_cell.h"
 
@@ -34,7 +35,6 @@ class RealCellSource final : public CellSource {
   std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) override;
 
   bool HasScriptedTeacher() const override { return false; }
-  teach::Teacher PersonTeacher(worlds::World& world, const teach::TeleopCommand* command) override;
   /// Through the located camera, or along the table's axes (right +x, up +y) when the camera
   /// has no pose.
   Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
@@ -58,15 +58,19 @@ class RealCellSource final : public CellSource {
   void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const override;
   /// Replaces the snapshot's camera, beacon and arm rows by the devices' live status.
   void ShowDevices(ui::StudioSnapshot& s) const override;
-  /// The guarded arm's envelope, its counts and its e-stop (the arm's own latch).
-  void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
-  void EmergencyStop(bool engage, const std::string& reason) override;
+  /// The profile's UR5 behind its guard, session or not; null when the profile names no robot.
+  safety::GuardedArm* GuardedArmOf(worlds::World*) const override { return cell_->arm(); }
 
+  /// Paced by the teacher who moves the beacon, or, when the profile puts the beacon on the arm
+  /// (beacon_on_arm), by the arm carrying it (real_cell_calibration.cc).
   bool GuidesCalibration() const override { return true; }
-  /// UserError when the camera's pose in the table frame is unknown (its tags were not seen).
+  /// UserError when the camera's pose in the table frame is unknown (its tags were not seen),
+  /// or for a calibration by the arm when the robot is not open.
   void StartGuidedCalibration(int points) override;
-  std::optional<calib::CalibrationReport> StepGuidedCalibration(ui::CalibrationView& view) override;
-  void StopGuidedCalibration() override { guided_.reset(); }
+  std::optional<calib::CalibrationReport> StepGuidedCalibration(
+      ui::GuidedCalibrationView& view) override;
+  /// Ends either calibration; a calibration by the arm stops the arm.
+  void StopGuidedCalibration() override;
   bool RunsTrials() const override { return cell_->arm() != nullptr; }
   /// Through the located camera; none without its pose.
   std::optional<std::array<float, 2>> TablePixel(const Eigen::Vector3d& p) const override;
@@ -77,9 +81,16 @@ class RealCellSource final : public CellSource {
   /// The arm's state; none without an arm or while it is gone.
   std::optional<devices::JointState> ArmState() const;
   std::optional<Eigen::Vector3d> GripPoint() const;
+  /// One pass of the calibration by the arm: reads the arm and the beacons, commands the arm.
+  std::optional<calib::CalibrationReport> StepArmCalibration(ui::GuidedCalibrationView& view);
+  void ShowCalibration(const cell::GuidedCalibrationStatus& status,
+                       const std::vector<cell::CollectedPose>& poses,
+                       ui::GuidedCalibrationView& view) const;
 
   std::unique_ptr<cell::RealCell> cell_;
   std::unique_ptr<cell::GuidedCalibration> guided_;
+  std::unique_ptr<cell::ArmCalibration> arm_calibration_;
+  double last_calibration_step_s_ = 0;
   int64_t guided_frame_ = -1;  // the last frame the calibration looked at
   int64_t shown_frame_ = -1;   // the last frame ShowLive showed
 };

@@ -3,7 +3,6 @@
 #include "app/cli/session_world.h"
 #include "app/studio/cell_view.h"
 #include "engine/core/error.h"
-#include "engine/safety/guarded_arm.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::studio {
@@ -44,11 +43,6 @@ std::unique_ptr<worlds::World> SimulatedCellSource::MakeSessionWorld(
   return cli::MakeSessionWorld(m, m.placement);
 }
 
-teach::Teacher SimulatedCellSource::PersonTeacher(worlds::World& world,
-                                                  const teach::TeleopCommand* command) {
-  return teach::CartesianTeleopTeacher(TabletopOf(world), command);
-}
-
 Eigen::Vector3d SimulatedCellSource::TeleopVelocity(worlds::World&, const ui::TeleopInput& input,
                                                     ViewSize,
                                                     const worlds::OrbitCamera& teacher_view,
@@ -87,13 +81,8 @@ void SimulatedCellSource::ShowArm(const worlds::World& world, ui::StudioSnapshot
   s.gripper_closed = tabletop.arm().GripperClosed();
 }
 
-void SimulatedCellSource::ShowSafety(const worlds::World* world, ui::SafetyView& view) const {
-  if (world == nullptr) return;
-  const worlds::Tabletop& tabletop = TabletopOf(*world);
-  const safety::SafetyStats& stats = tabletop.safety_stats();
-  view.commands = stats.commands;
-  view.changed = stats.changed;
-  view.limits = safety::DescribeLimits(tabletop.safety_limits());
+safety::GuardedArm* SimulatedCellSource::GuardedArmOf(worlds::World* world) const {
+  return world == nullptr ? nullptr : &TabletopOf(*world).guarded_arm();
 }
 
 }  // namespace recon::studio

@@ -13,7 +13,8 @@ namespace recon::studio {
 
 /// The simulated tabletop cell (the studio's default): the MuJoCo world draws its own camera
 /// view, its beacons read where the world puts them (with the session's noise), the scripted
-/// teacher can demonstrate, and a person's teleop drives the arm through the world's IK.
+/// teacher can demonstrate, and the world's UR5 stands behind its guard (worlds::GuardedUr5) as
+/// a real one does.
 class SimulatedCellSource final : public CellSource {
  public:
   /// `renderer` draws the live view (made on the cell thread, which owns its GL context); it
@@ -28,7 +29,6 @@ class SimulatedCellSource final : public CellSource {
   std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) override;
 
   bool HasScriptedTeacher() const override { return true; }
-  teach::Teacher PersonTeacher(worlds::World& world, const teach::TeleopCommand* command) override;
   Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
                                  const worlds::OrbitCamera& teacher_view,
                                  double speed_m_s) const override;
@@ -43,8 +43,7 @@ class SimulatedCellSource final : public CellSource {
                        ui::StudioSnapshot& s) override;
   void ShowArm(const worlds::World& world, ui::StudioSnapshot& s) const override;
   void ShowDevices(ui::StudioSnapshot&) const override {}
-  void ShowSafety(const worlds::World* world, ui::SafetyView& view) const override;
-  void EmergencyStop(bool, const std::string&) override {}
+  safety::GuardedArm* GuardedArmOf(worlds::World* world) const override;
 
  private:
   worlds::SceneRenderer& renderer_;

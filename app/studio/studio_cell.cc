@@ -8,7 +8,9 @@
 #include "app/studio/trial_run.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
+#include "engine/teach/homing.h"
 #include "engine/teach/session_setup.h"
+#include "engine/worlds/ur5_arm.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::studio {
@@ -108,6 +110,7 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   replace_.reset();
   report_path_.clear();
   world_ = std::move(made);
+  HoldEmergencyStop();
   session_ = std::move(opened);
   ResetToNextScene();
   picking_session_ = false;
@@ -134,8 +137,13 @@ void StudioCell::Handle(const ui::StudioCommand& command) {
 void StudioCell::Tick() {
   const Clock::time_point now = Clock::now();
   PollGamepad(now);
-  if (recorder_ && recorder_->recording() && now < take_starts_) {
-    // The countdown before a person's take: the arm does not move yet.
+  if (recorder_ && recorder_->recording() && (now < take_starts_ || homing_take_)) {
+    // Before a person's take: the countdown, and meanwhile the arm's return to its home pose,
+    // where every take and every trial starts. The take starts once both are over.
+    if (homing_take_ && now >= next_tick_) {
+      next_tick_ = now + kControlPeriod;
+      StepTakeHoming(now);
+    }
   } else if (recorder_ && recorder_->recording()) {
     // A person teleoperating needs the real control rate, whatever --fast says.
     const bool paced = options_.real_time || teleop_mode_ != ui::TeleopMode::kScripted;
@@ -172,6 +180,10 @@ void StudioCell::Tick() {
 
 bool StudioCell::Busy() const {
   return Driving() || calibrating_ || trial_ != nullptr || jobs_.Running();
+}
+
+bool StudioCell::TakeWaiting() const {
+  return recorder_ && recorder_->recording() && (homing_take_ || Clock::now() < take_starts_);
 }
 
 bool StudioCell::Driving() const {
@@ -233,7 +245,10 @@ void StudioCell::PollGamepad(Clock::time_point now) {
 teach::Teacher StudioCell::MakeTeacher() {
   // Scripted only where the cell has the scripted teacher: Start and SetTeleopMode see to it.
   if (teleop_mode_ == ui::TeleopMode::kScripted) return teach::ScriptedTeacher;
-  return source_->PersonTeacher(*world_, &teleop_command_);
+  // A person's teleop: one algorithm on the guarded arm of either cell.
+  const safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
+  if (arm == nullptr) throw UserError("this cell has no arm to teach with");
+  return teach::CartesianTeleopTeacher(*arm, &teleop_command_, world_->StepSeconds());
 }
 
 std::string StudioCell::TeleopSource() const {
@@ -259,6 +274,43 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   }
   recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
   teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
+  // A simulated scene puts the arm at home itself; a real arm is where the last take left it.
+  homing_take_ = teleop_mode_ != ui::TeleopMode::kScripted;
+  take_homing_since_ = Clock::now();
+}
+
+void StudioCell::StepTakeHoming(Clock::time_point now) {
+  safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
+  try {
+    if (arm == nullptr) throw UserError("the cell has no arm");
+    const std::optional<std::array<double, 6>> v =
+        teach::HomingVelocity(arm->State().position_rad, worlds::Ur5Arm::kHome);
+    if (!v) {
+      homing_take_ = false;
+      arm->Stop();
+      return;
+    }
+    if (now - take_homing_since_ > kHomingTimeout) {
+      throw UserError(
+          "the arm did not reach its home pose within " +
+          std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kHomingTimeout).count()) +
+          " s (blocked, or in a protective stop?)");
+    }
+    std::vector<float> u(v->begin(), v->end());
+    u.push_back(0.0f);  // open: every take begins with the gripper open
+    world_->Step(u);
+  } catch (const UserError& e) {
+    homing_take_ = false;
+    recorder_.reset();
+    replace_.reset();
+    try {
+      if (arm != nullptr) arm->Stop();
+    } catch (const UserError&) {
+      // The arm is gone: its controller stopped it when the commands stopped.
+    }
+    Changed();
+    AddError(std::string("the take did not start: while returning home, ") + e.what());
+  }
 }
 
 void StudioCell::TakeEnded() {

@@ -65,6 +65,8 @@ class StudioCell {
 
  private:
   static constexpr auto kControlPeriod = std::chrono::milliseconds(100);  // the arm's 10 Hz
+  /// Homing before a trial that takes longer than this stops it: the arm is blocked or stopped.
+  static constexpr auto kHomingTimeout = std::chrono::seconds(30);
   static constexpr double kTeleopSpeed_m_s = 0.1;
 
   // The session (studio_cell.cc).
@@ -93,11 +95,18 @@ class StudioCell {
   void TakeEnded();
   /// A chunk is one scenario's worth of play, seeded as `recon record --play` seeds it.
   void StartPlayChunk();
+  /// One control period of the arm's return home before a person's take (teach::HomingVelocity);
+  /// a fault or a joint too far from home ends the take before it started, and says why.
+  void StepTakeHoming(Clock::time_point now);
+  /// A person's take is started but waits for its countdown or the arm's return home.
+  bool TakeWaiting() const;
   /// Commits the play chunk just recorded and starts the next one while samples remain.
   void CommitPlayChunk();
   void RequireIdle(const char* what) const;
   /// For whatever moves the arm.
   void RequireNoEmergencyStop(const char* what) const;
+  /// Engages the e-stop on the cell's arm if the studio's is engaged (a newly made world's arm).
+  void HoldEmergencyStop();
 
   // The snapshot (studio_cell_publish.cc).
   /// Everything the snapshot shows of the session and the workflow (session_view.h).
@@ -161,14 +170,20 @@ class StudioCell {
   void Apply(const ui::ShowTrialFrame& c);
   /// Shows trial `number`'s layout (the test plan's scene number - 1) for the teacher to set up.
   void SetUpTrial(int number);
-  /// The countdown, then one policy step per control period; the verdict once its time is up.
+  /// The countdown, the return home, then one policy step per control period; the verdict once
+  /// its time is up.
   void TickTrial(Clock::time_point now);
+  /// One control period of the return home before a trial (teach::HomingVelocity); the policy
+  /// starts once the arm is there. A fault, a joint too far from home or the timeout aborts it.
+  void StepHoming(Clock::time_point now);
+  /// The arm is home: the policy takes over.
+  void StartPolicy();
   /// A fault or the e-stop during a trial: the arm stops, the trial is not kept, and the same
   /// trial waits to be set up and run again.
   void AbortTrial(const std::string& why);
   /// Stops the arm where it is (a real cell's world Reset), whether or not it is still there.
   void HoldArm();
-  /// A trial is counting down or running.
+  /// A trial is counting down, homing or running.
   bool TrialMoving() const;
   void ShowTrial(ui::StudioSnapshot& s) const;
 
@@ -212,13 +227,15 @@ class StudioCell {
   JobThread jobs_;
   /// A guided calibration runs on the cell thread (the teacher moves the beacon), not as a job.
   bool calibrating_ = false;
-  ui::CalibrationView guided_calibration_;  ///< its live side, for the snapshot
+  ui::GuidedCalibrationView guided_calibration_;  ///< its live side, for the snapshot
   ui::StudioSnapshot session_view_;  ///< the session's side of the snapshot (RebuildSessionView)
   bool dirty_ = true;
   teach::Step current_step_ = teach::Step::kCell;
   std::vector<std::string> errors_;
   std::string status_;
   std::string report_path_;
+  bool homing_take_ = false;  ///< a person's take waits for the arm to be home
+  Clock::time_point take_homing_since_;
   bool estop_ = false;
   /// Why the take in recorder_ was set aside unfinished (ui::StudioSnapshot::pending_take).
   std::string pending_take_;

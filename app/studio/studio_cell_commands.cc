@@ -35,7 +35,7 @@ void StudioCell::Apply(const ui::StartCalibration&) {
   if (source_->GuidesCalibration()) {
     // The teacher moves the beacon place by place; the cell loop follows (StepCalibration).
     source_->StartGuidedCalibration(points);
-    guided_calibration_ = ui::CalibrationView{};
+    guided_calibration_ = ui::GuidedCalibrationView{};
     calibrating_ = true;
     status_ = "Calibrating: move the beacon to each place the Calibrate step asks for.";
     return;
@@ -66,6 +66,7 @@ void StudioCell::AttachCalibration(const std::string& path) {
   if (source_->GuidesCalibration()) {
     // A real cell's world reads the beacon through the calibration: make it again with it.
     world_ = source_->MakeSessionWorld(*session_);
+    HoldEmergencyStop();
   }
   const calib::CalibrationReport report = calib::LoadCalibration(
       (fs::path(session_->dir()) / session_->manifest().calibration_file).string());
@@ -103,10 +104,12 @@ void StudioCell::Apply(const ui::StartRecording&) {
 
 void StudioCell::Apply(const ui::StopRecording&) {
   // Stop and keep, or Keep for a take set aside unfinished.
+  if (TakeWaiting()) throw UserError("the take has not started yet: wait for it, or discard it");
   if (recorder_ && (recorder_->recording() || !pending_take_.empty())) Commit();
 }
 
 void StudioCell::Apply(const ui::DiscardRecording&) {
+  homing_take_ = false;
   recorder_.reset();
   replace_.reset();
   pending_take_.clear();
@@ -279,9 +282,18 @@ void StudioCell::Apply(const ui::DismissErrors&) { errors_.clear(); }
 
 void StudioCell::Apply(const ui::RescanDevices&) { scanner_.RescanNow(); }
 
+void StudioCell::HoldEmergencyStop() {
+  // The arm's own latch is what holds it; a world made while the e-stop is engaged gets it too.
+  if (!estop_) return;
+  if (safety::GuardedArm* arm = source_->GuardedArmOf(world_.get())) {
+    arm->EngageEmergencyStop(estop_reason_);
+  }
+}
+
 void StudioCell::Apply(const ui::EmergencyStop& c) {
+  safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
   if (!c.engage) {
-    source_->EmergencyStop(false, "");
+    if (arm != nullptr) arm->ReleaseEmergencyStop();
     estop_ = false;
     estop_reason_.clear();
     status_ = "E-stop released.";
@@ -289,13 +301,20 @@ void StudioCell::Apply(const ui::EmergencyStop& c) {
   }
   estop_ = true;
   estop_reason_ = c.reason.empty() ? "e-stop pressed" : c.reason;
-  source_->EmergencyStop(true, estop_reason_);
-  // The arm stops now. The simulated arm moves only while a recording steps it, so ending the
-  // recording stops it; nothing half-taught under an e-stop is kept.
+  // The arm stops now, through its guard, whichever cell: every command it gets from here on is
+  // a stop until the release. What was being taught or tried is ended below; nothing
+  // half-taught under an e-stop is kept.
+  HoldEmergencyStop();
   teleop_input_ = {};
   teleop_command_ = {};
   std::string stopped;
-  if (recorder_ && recorder_->recording()) {
+  if (TakeWaiting()) {
+    // Nothing was taught yet: there is nothing to set aside.
+    homing_take_ = false;
+    recorder_.reset();
+    replace_.reset();
+    stopped = "; the take had not started";
+  } else if (recorder_ && recorder_->recording()) {
     // What was taught so far is the teacher's to keep (as not done) or discard.
     recorder_->Stop();
     pending_take_ =

@@ -35,25 +35,17 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s.calibration.running = job.running && job.kind == JobKind::kCalibration;
   s.calibration.points_collected = job.calibration_points;
   if (calibrating_) {
-    const ui::CalibrationView& live = guided_calibration_;
-    ui::CalibrationView& c = s.calibration;
-    c.running = true;
-    c.guided = true;
-    c.points_collected = live.points_collected;
-    c.points_target = live.points_target;
-    c.prompt = live.prompt;
-    c.tag_seen = live.tag_seen;
-    c.tag_pixel = live.tag_pixel;
-    c.taken_pixel = live.taken_pixel;
-    c.beacon_uwb_m = live.beacon_uwb_m;
-    c.beacon_silent = live.beacon_silent;
-    c.held_fraction = live.held_fraction;
+    s.calibration.running = true;
+    s.calibration.guided = guided_calibration_;
+    s.calibration.points_collected = guided_calibration_.points_taken;
+    s.calibration.points_target = guided_calibration_.points_target;
   }
   s.recording = recorder_ && recorder_->recording();
   s.recording_samples = recorder_ ? recorder_->samples() : 0;
   s.recording_max_samples = world_->EpisodeLength();
   s.recording_step_s = world_->StepSeconds();
   s.pending_take = pending_take_;
+  s.take_homing = s.recording && homing_take_;
   if (s.recording) {
     s.countdown_s =
         std::max(0.0, std::chrono::duration<double>(take_starts_ - Clock::now()).count());
@@ -163,7 +155,15 @@ void StudioCell::ShowConnected(ui::StudioSnapshot& s) const {
 void StudioCell::ShowSafety(ui::StudioSnapshot& s) const {
   s.safety.estop = estop_;
   s.safety.estop_reason = estop_reason_;
-  source_->ShowSafety(world_.get(), s.safety);
+  const safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
+  if (arm == nullptr) return;
+  const safety::SafetyStats stats = arm->stats();
+  s.safety.limits = safety::DescribeLimits(arm->envelope().limits());
+  s.safety.commands = stats.commands;
+  s.safety.changed = stats.changed;
+  // The arm's own latch is what holds the robot: show it, not what the studio asked for.
+  s.safety.estop = arm->emergency_stopped();
+  s.safety.estop_reason = arm->emergency_stop_reason();
 }
 
 void StudioCell::ShowPlaySample() {

@@ -1,7 +1,8 @@
 // StudioCell's trials on a real arm: the protocol a lab runs a trained policy by (StartTrials):
-// the next test layout is shown, the teacher sets it up and runs the trial, the policy drives the
-// arm through the safety envelope until its time is up or the teacher stops it, the teacher
-// judges it, and the trial (with the frames the policy saw) is kept before the next one starts.
+// the next test layout is shown, the teacher sets it up and runs the trial, the arm returns to
+// its home pose (where every demonstration began), the policy drives it through the safety
+// envelope until its time is up or the teacher stops it, the teacher judges it, and the trial
+// (with the frames the policy saw) is kept before the next one starts.
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +21,9 @@
 #include "engine/store/episode_file.h"
 #include "engine/store/real_trials.h"
 #include "engine/store/training_record.h"
+#include "engine/teach/homing.h"
 #include "engine/teach/workflow.h"
+#include "engine/worlds/ur5_arm.h"
 
 namespace recon::studio {
 
@@ -92,14 +95,16 @@ void StudioCell::Apply(const ui::RunTrial&) {
   // As before a person's take: the teacher steps back from the table first.
   run.starts = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                   std::chrono::duration<double>(options_.countdown_s));
-  status_ = "Trial " + std::to_string(run.number) + ": the arm moves after the countdown.";
+  status_ = "Trial " + std::to_string(run.number) +
+            ": after the countdown the arm returns home, then the policy runs.";
 }
 
 void StudioCell::Apply(const ui::StopTrial&) {
   if (!trial_) throw UserError("no trial runs");
   TrialRun& run = *trial_;
-  if (run.phase == ui::TrialPhase::kCountdown) {
-    run.phase = ui::TrialPhase::kSetUp;  // nothing moved: the same trial waits again
+  if (run.phase == ui::TrialPhase::kCountdown || run.phase == ui::TrialPhase::kHoming) {
+    if (run.phase == ui::TrialPhase::kHoming) HoldArm();
+    run.phase = ui::TrialPhase::kSetUp;  // the policy never ran: the same trial waits again
     status_ = "Trial " + std::to_string(run.number) + " not started.";
   } else if (run.phase == ui::TrialPhase::kRunning) {
     HoldArm();
@@ -164,7 +169,7 @@ void StudioCell::Apply(const ui::EndTrials&) {
 void StudioCell::AbortTrial(const std::string& why) {
   if (!trial_) return;
   TrialRun& run = *trial_;
-  if (run.phase != ui::TrialPhase::kCountdown && run.phase != ui::TrialPhase::kRunning) return;
+  if (!TrialMoving()) return;
   HoldArm();
   run.message = "Trial " + std::to_string(run.number) + " stopped after " +
                 std::to_string(run.step) + " steps: " + why +
@@ -189,14 +194,17 @@ void StudioCell::TickTrial(Clock::time_point now) {
   TrialRun& run = *trial_;
   if (run.phase == ui::TrialPhase::kCountdown) {
     if (now < run.starts) return;
-    run.phase = ui::TrialPhase::kRunning;
-    run.ensembler.reset();
-    if (run.policy.action_chunk() > 1) {
-      run.ensembler.emplace(run.policy.action_chunk(), run.policy.spec().u_dim, 0.01,
-                            run.policy.ensembled_actions());
-    }
-    HoldArm();
-    status_ = "Trial " + std::to_string(run.number) + " running: Stop (or the e-stop) halts it.";
+    run.phase = ui::TrialPhase::kHoming;
+    run.starts = now;
+    run.homing_from_rad = 0;
+    run.homing_progress = 0;
+    status_ = "Trial " + std::to_string(run.number) + ": the arm returns to its home pose.";
+  }
+  if (run.phase == ui::TrialPhase::kHoming) {
+    if (now < next_tick_) return;
+    next_tick_ = now + kControlPeriod;
+    StepHoming(now);
+    return;
   }
   if (run.phase != ui::TrialPhase::kRunning || now < next_tick_) return;
   next_tick_ = now + kControlPeriod;
@@ -226,9 +234,53 @@ void StudioCell::TickTrial(Clock::time_point now) {
   }
 }
 
+void StudioCell::StepHoming(Clock::time_point now) {
+  TrialRun& run = *trial_;
+  const safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
+  try {
+    if (arm == nullptr) throw UserError("the cell has no arm");
+    const std::array<double, 6> q = arm->State().position_rad;
+    const double left = teach::HomingDistance(q, worlds::Ur5Arm::kHome);
+    run.homing_from_rad = std::max(run.homing_from_rad, left);
+    run.homing_progress =
+        run.homing_from_rad > 0 ? static_cast<float>(1.0 - left / run.homing_from_rad) : 1.0f;
+    const std::optional<std::array<double, 6>> v = teach::HomingVelocity(q, worlds::Ur5Arm::kHome);
+    if (!v) {
+      StartPolicy();
+      return;
+    }
+    if (now - run.starts > kHomingTimeout) {
+      throw UserError(
+          "the arm did not reach its home pose within " +
+          std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kHomingTimeout).count()) +
+          " s (blocked, or in a protective stop?)");
+    }
+    // The gripper opens on the way: every demonstration began with it open.
+    std::vector<float> u(v->begin(), v->end());
+    u.push_back(0.0f);
+    world_->Step(u);
+  } catch (const UserError& e) {
+    AbortTrial(std::string("while returning home, ") + e.what());
+  }
+}
+
+void StudioCell::StartPolicy() {
+  TrialRun& run = *trial_;
+  HoldArm();
+  run.phase = ui::TrialPhase::kRunning;
+  run.homing_progress = 1;
+  run.ensembler.reset();
+  if (run.policy.action_chunk() > 1) {
+    run.ensembler.emplace(run.policy.action_chunk(), run.policy.spec().u_dim, 0.01,
+                          run.policy.ensembled_actions());
+  }
+  status_ = "Trial " + std::to_string(run.number) + " running: Stop (or the e-stop) halts it.";
+}
+
 bool StudioCell::TrialMoving() const {
   return trial_ &&
-         (trial_->phase == ui::TrialPhase::kCountdown || trial_->phase == ui::TrialPhase::kRunning);
+         (trial_->phase == ui::TrialPhase::kCountdown || trial_->phase == ui::TrialPhase::kHoming ||
+          trial_->phase == ui::TrialPhase::kRunning);
 }
 
 void StudioCell::ShowTrial(ui::StudioSnapshot& s) const {
@@ -252,6 +304,7 @@ void StudioCell::ShowTrial(ui::StudioSnapshot& s) const {
   if (run.phase == ui::TrialPhase::kCountdown) {
     v.countdown_s = std::max(0.0, std::chrono::duration<double>(run.starts - Clock::now()).count());
   }
+  v.homing_progress = run.homing_progress;
   v.step = run.step;
   v.max_steps = world_->EpisodeLength();
   v.stopped = run.stopped;

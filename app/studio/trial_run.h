@@ -24,7 +24,9 @@ struct TrialRun {
   ui::TrialPhase phase = ui::TrialPhase::kSetUp;
   uint64_t scene_seed = 0;
   std::map<std::string, std::array<double, 2>> layout;
-  std::chrono::steady_clock::time_point starts;
+  std::chrono::steady_clock::time_point starts;  ///< the countdown's end; then homing's start
+  double homing_from_rad = 0;  ///< the largest joint distance from home when homing began
+  float homing_progress = 0;
   int step = 0;
   bool stopped = false;
   store::TrialFrames frames;

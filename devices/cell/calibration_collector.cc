@@ -17,6 +17,24 @@ std::optional<tags::TagLocation> LocateTag(tags::TagDetector& detector,
   return std::nullopt;
 }
 
+CollectedPose PoseFromHold(const std::vector<Eigen::Vector3d>& truth_m,
+                           const std::vector<Eigen::Vector3d>& uwb_m) {
+  const auto mean = [](const std::vector<Eigen::Vector3d>& points) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : points) sum += p;
+    return Eigen::Vector3d(sum / static_cast<double>(points.size()));
+  };
+  CollectedPose pose;
+  pose.point.tag_m = mean(truth_m);
+  pose.point.uwb_m = mean(uwb_m);
+  pose.frames_with_tag = pose.frames_tried = static_cast<int>(truth_m.size());
+  pose.uwb_samples = static_cast<int>(uwb_m.size());
+  for (const Eigen::Vector3d& p : truth_m) {
+    pose.tag_spread_m = std::max(pose.tag_spread_m, (p - pose.point.tag_m).norm());
+  }
+  return pose;
+}
+
 CollectedPose CollectPose(devices::Camera& camera, devices::BeaconSource& beacons,
                           const tags::TableLocator& locator, const devices::Clock& clock,
                           const PoseCollectOptions& options, const std::string& pose_label) {

@@ -37,6 +37,12 @@ struct CollectedPose {
   double tag_spread_m = 0;
 };
 
+/// The pose a hold of the beacon gives: where it truly was (where the camera saw its tag, or
+/// where the arm held it) and its UWB positions, each averaged, with the truth's spread. Both
+/// lists must be non-empty.
+CollectedPose PoseFromHold(const std::vector<Eigen::Vector3d>& truth_m,
+                           const std::vector<Eigen::Vector3d>& uwb_m);
+
 /// The table-frame position of tag `tag_id` in `frame`, or nullopt when it is not detected.
 std::optional<tags::TagLocation> LocateTag(tags::TagDetector& detector,
                                            const tags::TableLocator& locator, const RgbImage& frame,

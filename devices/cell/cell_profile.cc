@@ -212,6 +212,20 @@ BeaconTagProfile ReadBeaconTag(const Fields& top) {
   return profile;
 }
 
+Eigen::Vector3d ReadBeaconOnArm(const Fields& top) {
+  const Fields on_arm = top.Object("beacon_on_arm");
+  on_arm.OnlyKnown({"offset_m"});
+  const json& xyz = on_arm.Array("offset_m");
+  if (xyz.size() != 3 || !xyz[0].is_number() || !xyz[1].is_number() || !xyz[2].is_number()) {
+    on_arm.Fail("offset_m", "expected [x, y, z] in metres");
+  }
+  const Eigen::Vector3d offset(xyz[0].get<double>(), xyz[1].get<double>(), xyz[2].get<double>());
+  if (!offset.allFinite() || offset.norm() > 0.5) {
+    on_arm.Fail("offset_m", "expected the beacon's offset from the tool point, within 0.5 m");
+  }
+  return offset;
+}
+
 }  // namespace
 
 CellProfile ReadCellProfile(const std::string& path) {
@@ -225,7 +239,8 @@ CellProfile ReadCellProfile(const std::string& path) {
   }
   if (!root.is_object()) throw UserError(path + ": expected a JSON object (a cell profile)");
   const Fields top(root, path, "");
-  top.OnlyKnown({"camera", "table_tags", "beacons", "robot", "robot_base_in_table", "beacon_tag"});
+  top.OnlyKnown({"camera", "table_tags", "beacons", "robot", "robot_base_in_table", "beacon_tag",
+                 "beacon_on_arm"});
   const fs::path folder = fs::absolute(fs::path(path)).parent_path();
 
   CellProfile profile;
@@ -236,6 +251,10 @@ CellProfile ReadCellProfile(const std::string& path) {
   if (top.Has("robot")) profile.robot = ReadRobot(top);
   if (top.Has("robot_base_in_table")) profile.robot_base_in_table = ReadBase(top);
   if (top.Has("beacon_tag")) profile.beacon_tag = ReadBeaconTag(top);
+  if (top.Has("beacon_on_arm")) {
+    if (!profile.robot) top.Fail("beacon_on_arm", "a beacon on the arm needs a robot");
+    profile.beacon_on_arm_offset_m = ReadBeaconOnArm(top);
+  }
   return profile;
 }
 

@@ -61,6 +61,10 @@ struct CellProfile {
   /// frame's origin is the arm's base.
   Eigen::Isometry3d robot_base_in_table = Eigen::Isometry3d::Identity();
   BeaconTagProfile beacon_tag;
+  /// Set when the beacon rides on the arm's tool ("beacon_on_arm": {"offset_m": [x, y, z]}, its
+  /// antenna from the tool point in the table frame): the Calibrate step then moves the arm to
+  /// the places itself (ArmCalibration) instead of asking the teacher to move the beacon.
+  std::optional<Eigen::Vector3d> beacon_on_arm_offset_m;
 };
 
 /// Reads a cell profile:
@@ -70,10 +74,12 @@ struct CellProfile {
 ///      "beacons": {"ports": ["/dev/ttyACM0"], "mode": "tlv", "names": {"0x1A2B": "plate"}},
 ///      "robot": {"host": "192.168.1.10", "rtde_port": 30004, "script_port": 30002},
 ///      "robot_base_in_table": {"xyz_m": [0, 0, 0], "yaw_deg": 0},
-///      "beacon_tag": {"id": 10, "size_m": 0.0352, "height_m": 0.06}}
+///      "beacon_tag": {"id": 10, "size_m": 0.0352, "height_m": 0.06},
+///      "beacon_on_arm": {"offset_m": [0, 0, 0.03]}}
 ///
 /// camera.calibration, beacons.mode (default "lec"), beacons.names, robot, its ports,
-/// robot_base_in_table and beacon_tag (and each of its fields) are optional. Relative paths (a
+/// robot_base_in_table, beacon_tag (and each of its fields) and beacon_on_arm (which needs a
+/// robot) are optional. Relative paths (a
 /// camera file or folder, the calibration, the table tags, a serial port) are resolved against the
 /// profile's folder. Throws UserError naming the file and the field, e.g. "cell.json:
 /// beacons.ports[1]: expected a string", for a missing file, a file that is not JSON, a missing or

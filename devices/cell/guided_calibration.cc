@@ -11,12 +11,6 @@ namespace recon::cell {
 
 namespace {
 
-Eigen::Vector3d Mean(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) sum += p;
-  return sum / static_cast<double>(points.size());
-}
-
 std::string Format(const char* format, double a, double b = 0) {
   char text[256];
   std::snprintf(text, sizeof(text), format, a, b);
@@ -108,15 +102,7 @@ void GuidedCalibration::Look(const RgbImage& frame, double now_s) {
 }
 
 void GuidedCalibration::TakePose() {
-  CollectedPose pose;
-  pose.point.tag_m = Mean(hold_tags_);
-  pose.point.uwb_m = Mean(hold_uwb_);
-  pose.frames_with_tag = pose.frames_tried = static_cast<int>(hold_tags_.size());
-  pose.uwb_samples = static_cast<int>(hold_uwb_.size());
-  for (const Eigen::Vector3d& p : hold_tags_) {
-    pose.tag_spread_m = std::max(pose.tag_spread_m, (p - pose.point.tag_m).norm());
-  }
-  poses_.push_back(pose);
+  poses_.push_back(PoseFromHold(hold_tags_, hold_uwb_));
   status_.taken = static_cast<int>(poses_.size());
   // The beacon still stands where it was taken: the next look finds it too near this place.
   anchor_.reset();

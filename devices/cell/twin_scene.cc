@@ -101,19 +101,60 @@ void TwinScene::Arrange(const TwinLayout& layout) {
     pos[0] = p.x();
     pos[1] = p.y();
   }
-  // The toast is a free body: its joint's position, lying flat where the layout puts it.
+  held_offset_.reset();
   const int toast = Require(m, mjOBJ_BODY, "toast");
-  mjtNum* q = d->qpos + m->jnt_qposadr[m->body_jntadr[toast]];
-  q[0] = layout.toast.x();
-  q[1] = layout.toast.y();
-  q[2] = m->body_pos[3 * toast + 2];
+  PlaceToast({layout.toast.x(), layout.toast.y(), m->body_pos[3 * toast + 2]});
+}
+
+void TwinScene::PlaceToast(const Eigen::Vector3d& p) {
+  // The toast is a free body: its joint's position, lying flat.
+  const mjModel* m = scene_.model();
+  mjData* d = scene_.data();
+  mjtNum* q = d->qpos + m->jnt_qposadr[m->body_jntadr[Require(m, mjOBJ_BODY, "toast")]];
+  q[0] = p.x();
+  q[1] = p.y();
+  q[2] = p.z();
   q[3] = 1;
   q[4] = q[5] = q[6] = 0;
   mj_forward(m, d);
 }
 
+Eigen::Vector3d TwinScene::ToastPosition() const {
+  const mjModel* m = scene_.model();
+  const mjtNum* q =
+      scene_.data()->qpos + m->jnt_qposadr[m->body_jntadr[Require(m, mjOBJ_BODY, "toast")]];
+  return {q[0], q[1], q[2]};
+}
+
 void TwinScene::PoseArm(const worlds::Ur5Joints& q, double gripper_opening) {
-  arm_.ShowPose(q, gripper_opening);
+  arm_.ShowPose(q, gripper_opening);  // runs mj_forward: the grip point is where q puts it
+  const bool closed = std::isfinite(gripper_opening) && gripper_opening < 0.5;
+  const Eigen::Vector3d grip = arm_.GripPosition();
+  if (closed && !closed_ && !held_offset_) {
+    const Eigen::Vector3d toast = ToastPosition();
+    const Eigen::Vector3d offset = toast - grip;
+    if (offset.head<2>().norm() <= kGraspReach_m && -offset.z() <= kGraspReach_m) {
+      held_offset_ = offset;
+    }
+  }
+  if (!closed && held_offset_) {
+    // Let go: it falls straight down onto what is under it.
+    const mjModel* m = scene_.model();
+    const int toast = Require(m, mjOBJ_BODY, "toast");
+    const double rest_z = m->body_pos[3 * toast + 2];  // lying on the table
+    const Eigen::Vector3d at = grip + *held_offset_;
+    const mjtNum* plate =
+        scene_.data()->mocap_pos + 3 * m->body_mocapid[Require(m, mjOBJ_BODY, "plate")];
+    const int plate_geom = Require(m, mjOBJ_GEOM, "plate");
+    const double plate_radius = m->geom_size[3 * plate_geom];
+    const double plate_top = 2 * m->geom_size[3 * plate_geom + 1];
+    const bool on_plate = std::hypot(at.x() - plate[0], at.y() - plate[1]) <= plate_radius;
+    held_offset_.reset();
+    PlaceToast({at.x(), at.y(), rest_z + (on_plate ? plate_top : 0.0)});
+  } else if (held_offset_) {
+    PlaceToast(grip + *held_offset_);
+  }
+  closed_ = closed;
 }
 
 Eigen::Vector3d TwinScene::BeaconPosition() const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,8 +31,10 @@ void WriteTwinLayout(const std::string& path, const TwinLayout& layout);
 
 /// The tabletop scene (assets/mjcf/tabletop.xml, its AprilTags painted) as a digital twin of a
 /// real cell shows it: the objects where a layout puts them and the UR5 posed kinematically at
-/// joint angles that come from elsewhere (a controller's RTDE state), nothing simulated. It is
-/// the truth a twin's camera draws and its beacons report. One thread only, like its scene.
+/// joint angles that come from elsewhere (a controller's RTDE state). No dynamics are simulated,
+/// but the gripper carries the toast kinematically, so a policy's trial on the twin can pick it
+/// up and put it down. It is the truth a twin's camera draws and its beacons report. One thread
+/// only, like its scene.
 class TwinScene {
  public:
   /// The largest image the scene can be drawn at.
@@ -41,9 +44,18 @@ class TwinScene {
   TwinScene(const TwinScene&) = delete;  // the arm points into the scene
   TwinScene& operator=(const TwinScene&) = delete;
 
+  /// Puts the objects where `layout` says (a held toast is let go: the person took it).
   void Arrange(const TwinLayout& layout);
-  /// `q` as the controller reports it, `gripper_opening` 0 (closed) to 1 (open).
+  /// `q` as the controller reports it, `gripper_opening` 0 (closed) to 1 (open). Closing the
+  /// gripper with the toast between its fingers (the grip point within kGraspReach_m of the
+  /// toast's centre across, and at most that above it) picks the toast up; it then moves with
+  /// the grip point; opening the gripper drops it straight down, onto the plate where the plate
+  /// is under it, else onto the table.
   void PoseArm(const worlds::Ur5Joints& q, double gripper_opening);
+  static constexpr double kGraspReach_m = 0.04;
+
+  Eigen::Vector3d ToastPosition() const;
+  bool HoldsToast() const { return held_offset_.has_value(); }
 
   /// Where the beacon beside the plate is (its tag's centre), table frame.
   Eigen::Vector3d BeaconPosition() const;
@@ -60,8 +72,13 @@ class TwinScene {
   double BeaconTagHeight() const;
 
  private:
+  /// Puts the toast's free body at `p`, lying flat.
+  void PlaceToast(const Eigen::Vector3d& p);
+
   worlds::MujocoModel scene_;
   worlds::Ur5Arm arm_;
+  bool closed_ = false;
+  std::optional<Eigen::Vector3d> held_offset_;  ///< toast minus grip point while held
 };
 
 }  // namespace recon::cell

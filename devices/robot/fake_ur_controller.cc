@@ -178,8 +178,10 @@ void FakeUrController::ServeRtde(Connection& connection) {
       if (!socket.SendAll(reply)) return;
     }
     if (started && std::chrono::steady_clock::now() >= next_send) {
-      if (!socket.SendAll(DataPackage(*recipe))) return;
+      // Counted as it is handed to the socket, before the client can have it: a client never
+      // counts more packages than this.
       ++data_packets_;
+      if (!socket.SendAll(DataPackage(*recipe))) return;
       next_send += period;
       // Behind by more than a few periods (a loaded machine): skip ahead instead of bursting.
       if (std::chrono::steady_clock::now() > next_send + 4 * period) {

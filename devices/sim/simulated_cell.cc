@@ -27,38 +27,27 @@ SimulatedCell::SimulatedCell(const SimulatedCellOptions& options,
   world_ = std::make_unique<worlds::Tabletop>(options.tabletop, MakeRenderer(renderer_factory));
   camera_ = std::make_unique<SimulatedCamera>(
       world_->scene(), kCamera, options.tabletop.image_width, options.tabletop.image_height,
-      MakeRenderer(renderer_factory), clock_);
+      MakeRenderer(renderer_factory), world_->clock());
   SimulatedBeacon plate{kBeaconName, kBeaconSite, {}};
   plate.dwm.table_to_uwb = hidden_table_to_uwb_;
   plate.dwm.seed = Rng::Derive(options.seed, kUwbStream);
   std::vector<SimulatedBeacon> beacons;
   beacons.push_back(std::move(plate));
-  beacons_ = std::make_unique<SimulatedBeaconSource>(world_->scene(), std::move(beacons), clock_);
-  arm_ = std::make_unique<SimulatedArm>(world_->arm(), clock_, options.arm_watchdog_timeout_s);
+  beacons_ =
+      std::make_unique<SimulatedBeaconSource>(world_->scene(), std::move(beacons), world_->clock());
 }
 
-void SimulatedCell::Reset(uint64_t seed) {
-  world_->Reset(seed);
-  arm_->Stop();  // the world's reset already stopped the UR5; this clears the device's command
-}
+void SimulatedCell::Reset(uint64_t seed) { world_->Reset(seed); }  // also stops the arm
 
 void SimulatedCell::Step(const devices::TeleopCommand& command) {
-  arm_->CommandJointVelocities(command.joint_velocity_rad_s);
-  arm_->CommandGripper(command.close_gripper);
-  Advance();
-}
-
-void SimulatedCell::Advance() {
-  arm_->CheckWatchdog();
-  // Tabletop::Step is the world's one way to step physics (and refresh its own image); it
-  // re-commands the UR5, so it is handed exactly what the arm device has in force.
+  // Tabletop::Step is the world's one way to command and step it: the same guarded arm a
+  // recorder or a policy drives.
   std::vector<float> u(worlds::Ur5Arm::kJoints + 1);
   for (int i = 0; i < worlds::Ur5Arm::kJoints; ++i) {
-    u[i] = static_cast<float>(arm_->commanded_velocity_rad_s()[i]);
+    u[i] = static_cast<float>(command.joint_velocity_rad_s[i]);
   }
-  u[worlds::Ur5Arm::kJoints] = arm_->gripper_closed() ? 1.0f : 0.0f;
+  u[worlds::Ur5Arm::kJoints] = command.close_gripper ? 1.0f : 0.0f;
   world_->Step(u);
-  clock_.Advance(worlds::Tabletop::kControlPeriod_s);
 }
 
 }  // namespace recon::sim

@@ -3,7 +3,6 @@
 #include <cstdint>
 #include <memory>
 
-#include "devices/sim/simulated_arm.h"
 #include "devices/sim/simulated_beacon_source.h"
 #include "devices/sim/simulated_camera.h"
 #include "engine/calib/rigid_fit.h"
@@ -20,11 +19,11 @@ struct SimulatedCellOptions {
   /// The installation: the hidden table -> UWB frame and the beacon's noise stream. Scenarios are
   /// drawn by Reset(seed), independently of it.
   uint64_t seed = 1;
-  double arm_watchdog_timeout_s = SimulatedArm::kDefaultWatchdogTimeout_s;
 };
 
-/// The simulated teaching cell behind the device interfaces, for the recorder and the GUI: the
-/// tabletop world, simulated time, the top camera, the plate's UWB beacon and the arm.
+/// The simulated teaching cell behind the device interfaces: the tabletop world, its simulated
+/// time, the top camera, the plate's UWB beacon and the world's guarded arm (the simulated UR5
+/// behind the safety envelope, watchdog and e-stop, as a real cell's).
 ///
 /// Time moves only in Step/Advance, by one control period (0.1 s) each, so capturing the camera
 /// and polling the beacons once per step gives 10 Hz streams. The devices keep running across
@@ -51,25 +50,23 @@ class SimulatedCell {
   void Reset(uint64_t seed);
   /// Applies `command` to the arm, then Advance(). `finished` is the recorder's business.
   void Step(const devices::TeleopCommand& command);
-  /// One control period under the arm's current command: the arm's watchdog is checked, the world
-  /// steps its physics, the clock moves on 0.1 s.
-  void Advance();
+  /// One control period under the arm's current command (Tabletop::Advance): the watchdogs are
+  /// checked, the world steps its physics, the clock moves on 0.1 s.
+  void Advance() { world_->Advance(); }
 
   worlds::Tabletop& world() { return *world_; }
-  const devices::ManualClock& clock() const { return clock_; }
+  const devices::ManualClock& clock() const { return world_->clock(); }
   SimulatedCamera& camera() { return *camera_; }
   SimulatedBeaconSource& beacons() { return *beacons_; }
-  SimulatedArm& arm() { return *arm_; }
+  safety::GuardedArm& arm() { return world_->guarded_arm(); }
   /// The installation's hidden pose: p_uwb = hidden_table_to_uwb().Apply(p_table).
   const calib::RigidTransform& hidden_table_to_uwb() const { return hidden_table_to_uwb_; }
 
  private:
-  devices::ManualClock clock_;
   calib::RigidTransform hidden_table_to_uwb_;
   std::unique_ptr<worlds::Tabletop> world_;
   std::unique_ptr<SimulatedCamera> camera_;
   std::unique_ptr<SimulatedBeaconSource> beacons_;
-  std::unique_ptr<SimulatedArm> arm_;
 };
 
 }  // namespace recon::sim

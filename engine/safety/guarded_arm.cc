@@ -1,7 +1,11 @@
 #include "engine/safety/guarded_arm.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <utility>
+
+#include "engine/core/error.h"
 
 namespace recon::safety {
 namespace {
@@ -32,9 +36,7 @@ void GuardedArm::CommandJointVelocities(const std::array<double, 6>& velocity_ra
   }
   const double now = clock_.NowSeconds();
   const devices::JointState state = arm_.State();
-  // Before the first command (or after an e-stop) the arm is at rest: one lookahead's worth of
-  // acceleration is what the first command may ask for.
-  const double dt = have_command_ ? now - last_command_s_ : filter_.envelope().limits().lookahead_s;
+  const double dt = SinceLastCommand(now);
   const SafetyDecision& decision = filter_.Apply(state.position_rad, velocity_rad_s, dt);
   last_command_s_ = now;
   have_command_ = true;
@@ -58,7 +60,27 @@ void GuardedArm::Stop() {
 
 void GuardedArm::StopLocked() {
   filter_.Stopped();
+  have_command_ = false;  // whatever time passes now, the next command starts from rest
   arm_.Stop();
+}
+
+double GuardedArm::SinceLastCommand(double now) const {
+  // Before the first command, or after a stop, the arm is at rest: one lookahead's worth of
+  // acceleration (one period's, when commands come in periods) is what a command may ask for.
+  if (command_period_s_ > 0) {
+    if (!have_command_) return command_period_s_;
+    return command_period_s_ *
+           std::max(1.0, std::round((now - last_command_s_) / command_period_s_));
+  }
+  return have_command_ ? now - last_command_s_ : filter_.envelope().limits().lookahead_s;
+}
+
+void GuardedArm::SetCommandPeriod(double period_s) {
+  if (!std::isfinite(period_s) || period_s <= 0) {
+    throw UserError("the arm's command period must be a positive number of seconds");
+  }
+  std::lock_guard lock(mutex_);
+  command_period_s_ = period_s;
 }
 
 std::string DescribeLimits(const SafetyLimits& l) {

@@ -40,8 +40,14 @@ class GuardedArm final : public devices::Arm {
   std::string Describe() const override;
 
   /// Stops the arm when the last velocity command is older than the watchdog timeout and was
-  /// not already a stop. True if it stopped the arm now.
+  /// not already a stop. True if it stopped the arm now. After any stop (this, Stop(), the
+  /// e-stop) the next command starts from rest, as the first one does.
   bool CheckWatchdog();
+  /// For an arm stepped in whole control periods (a simulated world): commands arrive exactly
+  /// `period_s` apart, and the envelope's acceleration rule is applied over whole periods rather
+  /// than over differences of clock readings, which carry rounding that would make a long run
+  /// differ from a short one in the last bit. UserError unless the period is a positive number.
+  void SetCommandPeriod(double period_s);
   /// Stops the arm now and refuses motion until ReleaseEmergencyStop().
   void EngageEmergencyStop(const std::string& reason);
   void ReleaseEmergencyStop();
@@ -55,13 +61,16 @@ class GuardedArm final : public devices::Arm {
 
  private:
   void StopLocked();
+  /// The time over which the envelope may change the command in force (SetCommandPeriod).
+  double SinceLastCommand(double now) const;
 
   devices::Arm& arm_;
   const devices::Clock& clock_;
   mutable std::mutex mutex_;
   SafetyFilter filter_;  // its command in force is what the arm was last told
   double last_command_s_ = 0;
-  bool have_command_ = false;
+  double command_period_s_ = 0;  // 0: commands come when they come (a real arm)
+  bool have_command_ = false;    // false after a stop: the next command starts from rest
   bool estop_ = false;
   std::string estop_reason_;
   int64_t watchdog_trips_ = 0;

@@ -11,9 +11,12 @@ namespace recon::teach {
 
 namespace {
 
-TeleopArm TabletopArm(const worlds::Tabletop& world) {
-  TeleopArm arm;  // the simulated arm's base is the table frame's origin
-  arm.tool_offset_m = world.safety_limits().tool_offset_m;
+// The point the teacher steers is the envelope's tool point, from the arm's base (the
+// simulated cell puts it at the table frame's origin).
+TeleopArm TeleopArmOf(const safety::SafetyLimits& limits) {
+  TeleopArm arm;
+  arm.base_in_table = limits.base_in_table;
+  arm.tool_offset_m = limits.tool_offset_m;
   return arm;
 }
 
@@ -41,7 +44,8 @@ std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
 
 std::vector<float> CartesianTeleopAction(worlds::Tabletop& world, const TeleopCommand& command,
                                          const CartesianTeleopLimits& limits) {
-  return CartesianTeleopAction(world.arm().JointPositions(), command, TabletopArm(world),
+  return CartesianTeleopAction(world.arm().JointPositions(), command,
+                               TeleopArmOf(world.safety_limits()),
                                worlds::Tabletop::kControlPeriod_s, limits);
 }
 
@@ -54,10 +58,16 @@ Teacher CartesianTeleopTeacher(std::function<std::array<double, 6>()> joints,
   };
 }
 
+Teacher CartesianTeleopTeacher(const safety::GuardedArm& arm, const TeleopCommand* command,
+                               double period_s, const CartesianTeleopLimits& limits) {
+  return CartesianTeleopTeacher([&arm] { return arm.State().position_rad; }, command,
+                                TeleopArmOf(arm.envelope().limits()), period_s, limits);
+}
+
 Teacher CartesianTeleopTeacher(worlds::Tabletop& world, const TeleopCommand* command,
                                const CartesianTeleopLimits& limits) {
-  return CartesianTeleopTeacher([&world] { return world.arm().JointPositions(); }, command,
-                                TabletopArm(world), worlds::Tabletop::kControlPeriod_s, limits);
+  return CartesianTeleopTeacher(world.guarded_arm(), command, worlds::Tabletop::kControlPeriod_s,
+                                limits);
 }
 
 }  // namespace recon::teach

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/safety/guarded_arm.h"
 #include "engine/teach/recorder.h"
 #include "engine/worlds/tabletop.h"
 
@@ -64,7 +65,11 @@ std::vector<float> CartesianTeleopAction(worlds::Tabletop& world, const TeleopCo
 Teacher CartesianTeleopTeacher(std::function<std::array<double, 6>()> joints,
                                const TeleopCommand* command, const TeleopArm& arm, double period_s,
                                const CartesianTeleopLimits& limits = {});
-/// The same for the simulated tabletop's arm.
+/// The same for an arm behind its guard, simulated or real: its joints as the guard reads them,
+/// its envelope's base and tool point, commands `period_s` apart.
+Teacher CartesianTeleopTeacher(const safety::GuardedArm& arm, const TeleopCommand* command,
+                               double period_s, const CartesianTeleopLimits& limits = {});
+/// The same for the simulated tabletop's arm (its guarded arm, its 10 Hz).
 Teacher CartesianTeleopTeacher(worlds::Tabletop& world, const TeleopCommand* command,
                                const CartesianTeleopLimits& limits = {});
 

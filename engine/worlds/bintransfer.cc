@@ -113,6 +113,7 @@ BinTransfer::BinTransfer(const std::string& placement, double noise_sigma)
     object_half_height_m_[i] = m->geom_size[3 * geom + (m->geom_type[geom] == mjGEOM_BOX ? 2 : 1)];
   }
   arm_ = std::make_unique<Ur5Arm>(scene_);  // resets to kHome
+  guarded_ = std::make_unique<GuardedUr5>(*arm_, kControlPeriod_s);
   home_yaw_rad_ = GripYaw(scene_);
   home_bearing_rad_ = std::atan2(arm_->GripPosition().y(), arm_->GripPosition().x());
 
@@ -184,7 +185,7 @@ void BinTransfer::ResetToLayout(uint64_t seed, const Layout& layout) {
   noise_rng_.Seed(Rng::Derive(seed, kNoiseStream));
   play_rng_.Seed(Rng::Derive(seed, kPlayStream));
   DropObjects(scene_, *arm_, layout, Ur5Arm::kHome);
-  safety_.Stopped();
+  guarded_->Placed();
   std::array<Eigen::Vector3d, kNumObjects> positions;
   for (int i = 0; i < kNumObjects; ++i) positions[i] = ObjectPosition(i);
   target_ = RightMost(positions);
@@ -218,13 +219,14 @@ void BinTransfer::Step(const std::vector<float>& u) {
   }
   Ur5Joints qd;
   for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
-  arm_->CommandJointVelocities(
-      safety_.Apply(arm_->JointPositions(), qd, kControlPeriod_s).command_rad_s);
+  guarded_->Command(qd);
+  guarded_->BeforePeriod();
   const int checks = static_cast<int>(std::lround(kControlPeriod_s / kGripperCheckPeriod_s));
   for (int c = 0; c < checks; ++c) {
     arm_->Step(kGripperCheckPeriod_s);
     UpdateGripper();
   }
+  guarded_->AfterPeriod();
   ++steps_;
   UpdatePhase();
 }

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "engine/core/rng.h"
-#include "engine/safety/safety_filter.h"
+#include "engine/worlds/guarded_ur5.h"
 #include "engine/worlds/mujoco_model.h"
 #include "engine/worlds/ur5_arm.h"
 #include "engine/worlds/world.h"
@@ -132,7 +132,9 @@ class BinTransfer : public World {
   Ur5Arm& arm() { return *arm_; }
 
   /// What the safety envelope did to this world's commands since it was made.
-  const safety::SafetyStats& safety_stats() const { return safety_.stats(); }
+  safety::SafetyStats safety_stats() const { return guarded_->guard().stats(); }
+  /// The UR5 as a cell holds it (Tabletop::guarded_arm).
+  safety::GuardedArm& guarded_arm() { return guarded_->guard(); }
 
  private:
   enum class Phase { kApproach, kDescend, kLift, kTransfer, kLower, kDone };
@@ -151,8 +153,9 @@ class BinTransfer : public World {
   double noise_sigma_;
   MujocoModel scene_;
   std::unique_ptr<Ur5Arm> arm_;
-  // Every velocity command passes the safety envelope (BinTransferSafetyLimits).
-  safety::SafetyFilter safety_;
+  // Every velocity command passes the guarded arm (the default envelope). The gripper is the
+  // world's own grasp detector's, not a command, so it goes to the arm directly.
+  std::unique_ptr<GuardedUr5> guarded_;
   // The scratch scene play layouts settle in, made on first use.
   std::unique_ptr<MujocoModel> play_scene_;
   std::unique_ptr<Ur5Arm> play_arm_;

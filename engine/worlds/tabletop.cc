@@ -79,6 +79,7 @@ Tabletop::Tabletop(const TabletopOptions& options, std::unique_ptr<SceneRenderer
   }
   PaintTagTextures(scene_);
   arm_ = std::make_unique<Ur5Arm>(scene_);
+  guarded_ = std::make_unique<GuardedUr5>(*arm_, kControlPeriod_s);
   const mjModel* m = scene_.model();
   plate_body_ = mj_name2id(m, mjOBJ_BODY, "plate");
   bowl_body_ = mj_name2id(m, mjOBJ_BODY, "bowl");
@@ -184,7 +185,7 @@ void Tabletop::PlaceToastAndArm() {
   toast[3] = 1.0;
   toast[4] = toast[5] = toast[6] = 0.0;
   arm_->Reset(Ur5Arm::kHome);  // also runs mj_forward
-  safety_.Stopped();
+  guarded_->Placed();
 }
 
 void Tabletop::FinishReset() {
@@ -256,11 +257,18 @@ void Tabletop::Step(const std::vector<float>& u) {
   }
   Ur5Joints qd;
   for (int i = 0; i < Ur5Arm::kJoints; ++i) qd[i] = u[i];
-  arm_->CommandJointVelocities(
-      safety_.Apply(arm_->JointPositions(), qd, kControlPeriod_s).command_rad_s);
   const bool was_closed = arm_->GripperClosed();
-  arm_->CommandGripper(u[Ur5Arm::kJoints] > 0.5f);
+  guarded_->Command(qd);
+  guarded_->guard().CommandGripper(u[Ur5Arm::kJoints] > 0.5f);
+  AdvanceFrom(was_closed);
+}
+
+void Tabletop::Advance() { AdvanceFrom(arm_->GripperClosed()); }
+
+void Tabletop::AdvanceFrom(bool was_closed) {
+  guarded_->BeforePeriod();
   arm_->Step(kControlPeriod_s);
+  guarded_->AfterPeriod();
   TrackGrasp(was_closed);
   Render();
 }

@@ -8,7 +8,7 @@
 
 #include "engine/core/image.h"
 #include "engine/core/rng.h"
-#include "engine/safety/safety_filter.h"
+#include "engine/worlds/guarded_ur5.h"
 #include "engine/worlds/mujoco_model.h"
 #include "engine/worlds/scene_renderer.h"
 #include "engine/worlds/ur5_arm.h"
@@ -150,9 +150,19 @@ class Tabletop : public World {
   std::pair<double, double> GraspHeights() const;
 
   /// The envelope this world's commands pass (the tool floor a grasp comes down to).
-  const safety::SafetyLimits& safety_limits() const { return safety_.envelope().limits(); }
+  const safety::SafetyLimits& safety_limits() const {
+    return guarded_->guard().envelope().limits();
+  }
   /// What the safety envelope did to this world's commands since it was made.
-  const safety::SafetyStats& safety_stats() const { return safety_.stats(); }
+  safety::SafetyStats safety_stats() const { return guarded_->guard().stats(); }
+  /// The UR5 as a cell holds it (a devices::Arm behind the envelope, watchdog and e-stop),
+  /// which every Step commands: engage its e-stop and the arm stops, whoever drives it.
+  safety::GuardedArm& guarded_arm() { return guarded_->guard(); }
+  /// The world's simulated time: kControlPeriod_s a period.
+  const devices::ManualClock& clock() const { return guarded_->clock(); }
+  /// One control period under the command in force, as Step runs it after commanding: the
+  /// watchdogs, the physics, the camera, the clock. For a cell driven through guarded_arm().
+  void Advance();
 
  private:
   void PlaceMocap(int body, const Eigen::Vector3d& position);
@@ -167,6 +177,8 @@ class Tabletop : public World {
   /// Follows the approach to the toast for OutcomeDetails: the closest the grip point came before
   /// a grasp, and how often the gripper closed on nothing.
   void TrackGrasp(bool was_closed);
+  /// Advance() with the gripper's state before this period's command.
+  void AdvanceFrom(bool was_closed);
   /// UserError if the expert's waypoints of this layout are out of the arm's reach.
   void CheckReachable() const;
   std::vector<float> ImageAsY() const;
@@ -175,8 +187,8 @@ class Tabletop : public World {
   std::unique_ptr<SceneRenderer> renderer_;
   MujocoModel scene_;
   std::unique_ptr<Ur5Arm> arm_;
-  // Every velocity command, the expert's, a teacher's or a policy's, passes the safety envelope.
-  safety::SafetyFilter safety_;
+  // Every command, the expert's, a teacher's or a policy's, passes the guarded arm.
+  std::unique_ptr<GuardedUr5> guarded_;
   Rng rng_{0};
   int plate_body_ = -1, bowl_body_ = -1, toast_body_ = -1, beacon_site_ = -1;
   int toast_qpos_ = -1;

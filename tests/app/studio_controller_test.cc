@@ -271,6 +271,12 @@ TEST_F(StudioControllerTest, TheEStopEndsARecordingAndRefusesMotionUntilReleased
   picker.Push(ui::EmergencyStop{true, "no session"});
   s = WaitFor(picker, [](const auto& now) { return now.safety.estop; });
   EXPECT_TRUE(s.errors.empty());
+  // The arm of a session opened under the e-stop is held by its own latch from the start: the
+  // safety panel shows the arm's guard (its limits), and the guard says it is stopped.
+  picker.Push(ui::OpenSession{(dir_ / "held").string()});
+  s = WaitFor(picker, [](const auto& now) { return !now.safety.limits.empty(); });
+  EXPECT_TRUE(s.safety.estop);
+  EXPECT_EQ(s.safety.estop_reason, "no session");
 }
 
 // A take the e-stop stopped is kept when the teacher says so, as a demonstration not done.

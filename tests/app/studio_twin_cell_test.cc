@@ -1,15 +1,16 @@
-// The studio on a real cell's path without hardware: a digital twin (cell::TwinCamera drawing the
-// tabletop scene with the UR5 where a FakeUrController on loopback TCP says it is), the plate's
-// beacon a FakeDwm1001 on a pseudo-terminal reporting through a hidden UWB frame. The Calibrate
-// step runs place by place as the teacher (this test) moves the beacon, says when the beacon goes
-// silent, and saves a calibration that passes and maps the beacon onto the table.
+// The studio's trials on a real cell's path without hardware: a digital twin (cell::TwinCamera
+// drawing the tabletop scene with the UR5 where a FakeUrController on loopback TCP says it is),
+// the plate's beacon a FakeDwm1001 on a pseudo-terminal reporting through a hidden UWB frame. The
+// arm returns home before each trial, the policy drives it, the person judges, and every judged
+// trial is kept through faults (studio_twin_calibration_test.cc has the Calibrate step).
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -20,10 +21,10 @@
 #include "app/cli/session_summary.h"
 #include "app/studio/studio_controller.h"
 #include "engine/calib/calibration.h"
-#include "engine/core/rng.h"
 #include "engine/store/real_trials.h"
 #include "engine/store/session.h"
-#include "tests/app/twin_rig.h"
+#include "engine/worlds/ur5_arm.h"
+#include "tests/app/studio_twin_fixture.h"
 
 namespace recon::studio {
 namespace {
@@ -31,137 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-ui::StudioSnapshot WaitFor(const StudioController& controller,
-                           const std::function<bool(const ui::StudioSnapshot&)>& done,
-                           double timeout_s = 30) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  for (;;) {
-    ui::StudioSnapshot s = controller.Snapshot();
-    if (done(s)) return s;
-    if (std::chrono::steady_clock::now() > deadline) {
-      ADD_FAILURE() << "timed out; status: " << s.status << "; prompt: " << s.calibration.prompt
-                    << (s.errors.empty() ? "" : "; last error: " + s.errors.back());
-      return s;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-}
-
-class StudioTwinCellTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    char pattern[] = "/tmp/recon-studio-twin-XXXXXX";
-    ASSERT_NE(::mkdtemp(pattern), nullptr);
-    dir_ = pattern;
-    rig_ = std::make_unique<testing::TwinRig>(dir_ / "twin");
-  }
-  void TearDown() override {
-    rig_.reset();
-    fs::remove_all(dir_);
-  }
-
-  StudioOptions Options() const {
-    StudioOptions options;
-    options.session_dir = (dir_ / "session").string();
-    options.recent_sessions_file = (dir_ / "recent.json").string();
-    options.cell_profile = rig_->profile;
-    options.dev_dir = (dir_ / "no-dev").string();
-    options.calibration_points = 5;
-    options.countdown_s = 0;
-    return options;
-  }
-
-  fs::path dir_;
-  std::unique_ptr<testing::TwinRig> rig_;
-};
-
-TEST_F(StudioTwinCellTest, CalibratesPlaceByPlaceAsTheTeacherMovesTheBeacon) {
-  StudioController controller(Options());
-  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
-  EXPECT_EQ(s.cell_kind, "real");
-  EXPECT_EQ(s.camera.width, 1280);
-  controller.Push(ui::OpenStep{teach::Step::kCalibrate});
-  controller.Push(ui::StartCalibration{});
-  s = WaitFor(controller, [](const auto& now) {
-    return now.calibration.running && now.calibration.guided && !now.calibration.prompt.empty();
-  });
-  EXPECT_EQ(s.calibration.points_target, 5);
-  EXPECT_EQ(s.busy_with, "the calibration");
-  // Nothing else starts meanwhile.
-  controller.Push(ui::StartRecording{});
-  s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
-  EXPECT_THAT(s.errors.back(), HasSubstr("while something else runs"));
-  controller.Push(ui::DismissErrors{});
-
-  const std::vector<Eigen::Vector2d> places = {
-      {0.35, -0.3}, {0.75, -0.25}, {0.7, 0.2}, {0.4, 0.15}, {0.55, -0.05}};
-  std::vector<Eigen::Vector3d> truth;
-  const tags::PinholeCamera camera = rig_->scene.TopCamera(1280, 960);
-  for (size_t i = 0; i < places.size(); ++i) {
-    // The beacon's battery runs flat as it is moved to the third place: the screen says so and
-    // nothing is taken; it reports again, and the place is taken.
-    if (i == 2) rig_->beacon->Silence(true);
-    truth.push_back(rig_->PutPlate(places[i].x(), places[i].y()));
-    if (i == 2) {
-      s = WaitFor(controller, [](const auto& now) { return now.calibration.beacon_silent; });
-      EXPECT_THAT(s.calibration.prompt, HasSubstr("No reading from the beacon"));
-      EXPECT_EQ(s.calibration.points_collected, 2);
-      // Where the camera sees the tag, drawn over the live view.
-      ASSERT_TRUE(s.calibration.tag_seen);
-      const Eigen::Vector2d expected = camera.Project(truth.back());
-      EXPECT_NEAR(s.calibration.tag_pixel[0], expected.x(), 2.0);
-      EXPECT_NEAR(s.calibration.tag_pixel[1], expected.y(), 2.0);
-      rig_->beacon->Silence(false);
-    }
-    s = WaitFor(controller, [&](const auto& now) {
-      return now.calibration.points_collected >= static_cast<int>(i + 1) ||
-             !now.calibration.running;
-    });
-    if (i + 1 < places.size()) {
-      EXPECT_EQ(s.calibration.points_collected, static_cast<int>(i + 1));
-      EXPECT_EQ(s.calibration.taken_pixel.size(), i + 1);
-    }
-  }
-  s = WaitFor(controller,
-              [](const auto& now) { return !now.calibration.running && now.calibration.present; });
-  EXPECT_TRUE(s.calibration.passed);
-  EXPECT_LT(s.calibration.rmse_m, 0.03);
-  EXPECT_EQ(s.calibration.residual_m.size(), 5u);
-  EXPECT_THAT(s.status, HasSubstr("Calibrated: PASS"));
-
-  // The session keeps the fit, and the beacon now reads where the plate's beacon is on the table.
-  const store::Session session =
-      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
-  ASSERT_FALSE(session.manifest().calibration_file.empty());
-  const calib::CalibrationReport saved = calib::LoadCalibration(
-      (fs::path(session.dir()) / session.manifest().calibration_file).string());
-  EXPECT_TRUE(saved.passed);
-  controller.Push(ui::AssignBeacon{"plate", "plate"});
-  const Eigen::Vector3d now_at = rig_->PutPlate(0.6, -0.2);
-  s = WaitFor(controller, [&](const auto& now) {
-    return now.beacons.size() == 1 && now.beacons[0].reading.size() == 2 &&
-           std::abs(now.beacons[0].reading[0] - now_at.x()) < 0.03 &&
-           std::abs(now.beacons[0].reading[1] - now_at.y()) < 0.03;
-  });
-  ASSERT_EQ(s.beacons.size(), 1u);
-}
-
-TEST_F(StudioTwinCellTest, CancellingKeepsTheCalibrationTheSessionHad) {
-  StudioController controller(Options());
-  WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
-  controller.Push(ui::StartCalibration{});
-  rig_->PutPlate(0.4, -0.25);
-  ui::StudioSnapshot s =
-      WaitFor(controller, [](const auto& now) { return now.calibration.points_collected == 1; });
-  controller.Push(ui::CancelCalibration{});
-  s = WaitFor(controller, [](const auto& now) { return !now.calibration.running; });
-  EXPECT_FALSE(s.calibration.present);
-  EXPECT_THAT(s.status, HasSubstr("cancelled"));
-  const store::Session session =
-      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
-  EXPECT_TRUE(session.manifest().calibration_file.empty());
-  EXPECT_FALSE(fs::exists(dir_ / "session" / "calibration.new.json"));
-}
+using testing::StudioTwinCellTest;
+using testing::WaitFor;
 
 TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJudgedOne) {
   calib::SaveCalibration(testing::TwinCalibration(), (dir_ / "cal.json").string());
@@ -171,10 +43,15 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   StudioController controller(options);
   ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return now.camera_frame > 0; });
   controller.Push(ui::AssignBeacon{"plate", "plate"});
-  // Two keyboard demonstrations: the arm moves up the screen, then is kept.
+  // Two keyboard demonstrations: the arm moves up the screen, then is kept. The second starts
+  // where the first left the arm: it returns home first, so both begin where the trials will.
   for (int take = 0; take < 2; ++take) {
     controller.Push(ui::StartRecording{});
     s = WaitFor(controller, [](const auto& now) { return now.recording; });
+    if (take == 1) {
+      s = WaitFor(controller, [](const auto& now) { return now.take_homing; });
+      EXPECT_EQ(s.recording_samples, 0);
+    }
     ui::TeleopInput up;
     up.screen_up = 1;
     controller.Push(up);
@@ -184,6 +61,17 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
     s = WaitFor(controller, [&](const auto& now) {
       return !now.recording && now.episodes.size() == static_cast<size_t>(take + 1);
     });
+  }
+  {
+    const store::Session session =
+        store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
+    const Dataset data = session.LoadDataset();
+    ASSERT_EQ(data.demos.size(), 2u);
+    for (const Episode& demo : data.demos) {
+      // x is the joints minus home: each take's first sample is at home.
+      for (int j = 0; j < 6; ++j)
+        EXPECT_LT(std::abs(demo.samples[0].x[static_cast<size_t>(j)]), 0.01);
+    }
   }
   // Trials need a trained model.
   controller.Push(ui::StartTrials{"baseline", 2});
@@ -213,10 +101,19 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
     EXPECT_NEAR((*o.pixel)[0], expected.x(), 3.0) << o.name;
     EXPECT_NEAR((*o.pixel)[1], expected.y(), 3.0) << o.name;
   }
-  // Trial 1: set up, run, stopped by the person after a few steps, judged a success.
+  // Trial 1: set up, run, stopped by the person after a few steps, judged a success. The arm
+  // was left away from home (a take ends wherever the teacher stopped): it returns home first,
+  // so the policy starts where every demonstration began.
   rig_->SetUpLayout(s.trial);
+  std::array<double, 6> away = worlds::Ur5Arm::kHome;
+  away[0] += 0.25;
+  away[2] -= 0.15;
+  rig_->robot->Teleport(away);
   const int64_t commands = rig_->robot->commands_received();
   controller.Push(ui::RunTrial{});
+  s = WaitFor(controller,
+              [](const auto& now) { return now.trial.phase == ui::TrialPhase::kHoming; });
+  EXPECT_THAT(s.status, HasSubstr("returns to its home pose"));
   s = WaitFor(controller, [](const auto& now) {
     return now.trial.phase == ui::TrialPhase::kRunning && now.trial.step >= 5;
   });
@@ -283,6 +180,8 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   const store::TrialFrames frames =
       store::ReadTrialFrames((fs::path(session.dir()) / *log->trials[0].frames).string());
   EXPECT_EQ(static_cast<int>(frames.y.size()), trial_one_steps);
+  // The policy's first observation: the joints at home (x is the joints minus home).
+  for (int j = 0; j < 6; ++j) EXPECT_LT(std::abs(frames.x[0][static_cast<size_t>(j)]), 0.01) << j;
   EXPECT_EQ(frames.y[0].size(), 3u * 64 * 64);
   EXPECT_EQ(frames.u[0].size(), 7u);
   controller.Push(ui::ShowTrialFrame{"baseline", 1, 2});
@@ -303,6 +202,29 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   s = WaitFor(controller, [](const auto& now) {
     return now.trial.phase == ui::TrialPhase::kSetUp && now.trial.number == 3;
   });
+  // An arm parked far from home (a wrist turned 4 rad) is not swung back by itself.
+  std::array<double, 6> parked = worlds::Ur5Arm::kHome;
+  parked[4] += 4.0;
+  // A real arm cannot jump: after moving the fake's, wait until the studio's view of the arm (its
+  // RTDE state) has seen it.
+  const auto teleport = [&](const std::array<double, 6>& q) {
+    const std::array<float, 3> before = controller.Snapshot().grip_m;
+    rig_->robot->Teleport(q);
+    WaitFor(controller, [&](const auto& now) {
+      return std::hypot(now.grip_m[0] - before[0], now.grip_m[1] - before[1],
+                        now.grip_m[2] - before[2]) > 0.01;
+    });
+  };
+  teleport(parked);
+  controller.Push(ui::RunTrial{});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.trial.phase == ui::TrialPhase::kSetUp && !now.trial.message.empty();
+  });
+  EXPECT_THAT(s.trial.message, HasSubstr("joint 5 is 4.00 rad from its home pose"));
+  EXPECT_THAT(s.trial.message, HasSubstr("with the pendant first"));
+  EXPECT_LT(std::abs(rig_->robot->q_rad()[4] - parked[4]), 1e-3) << "it did not move";
+  teleport(worlds::Ur5Arm::kHome);
+  controller.Push(ui::DismissErrors{});
   controller.Push(ui::RunTrial{});
   s = WaitFor(controller, [](const auto& now) { return now.trial.step >= 2; });
   rig_->robot.reset();  // the arm's controller goes away mid-trial

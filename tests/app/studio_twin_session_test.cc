@@ -88,7 +88,10 @@ click Collect points and fit)",
       rig.PutPlate(places[i].x(), places[i].y());
       if (i == 2) {
         Until(
-            studio, [](const auto& now) { return now.calibration.held_fraction > 0.3f; },
+            studio,
+            [](const auto& now) {
+              return now.calibration.guided && now.calibration.guided->held_fraction > 0.3f;
+            },
             "the hold at the third place");
         keep_screen("real_calibrate.png");
       }
@@ -111,8 +114,9 @@ click Collect points and fit)",
     driver.RunScript("click Record##step", "record");
     for (int take = 1; take <= 2; ++take) {
       driver.Click("Start recording");
+      // The second take waits for the arm to return home from where the first left it.
       Until(
-          studio, [](const auto& now) { return now.recording; }, "the take");
+          studio, [](const auto& now) { return now.recording && !now.take_homing; }, "the take");
       driver.Hold(ImGuiKey_UpArrow, 1.0);
       driver.Click("Stop and keep##take");
       s = Until(
@@ -133,6 +137,18 @@ click Collect points and fit)",
                  now.training[1].done;
         },
         "training", 180);
+    // The step list is re-read from the session a moment after the job ends: wait for the
+    // Rollouts step to open, as a person would see it enabled before clicking it.
+    Until(
+        studio,
+        [](const auto& now) {
+          for (const teach::StepStatus& step : now.steps) {
+            if (step.step == teach::Step::kRollouts)
+              return step.state != teach::StepState::kBlocked;
+          }
+          return false;
+        },
+        "the Rollouts step");
 
     // Rollouts: two trials of the Baseline on the arm, set up as shown and judged.
     driver.RunScript("click Rollouts##step\nclick Run 2 trials of Baseline", "trials");

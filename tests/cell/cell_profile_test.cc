@@ -198,5 +198,30 @@ TEST_F(CellProfileTest, ATwinsLayoutAndTheBeaconTagAreRead) {
   EXPECT_DOUBLE_EQ(defaults.beacon_tag.size_m, 0.0352);
 }
 
+TEST_F(CellProfileTest, ABeaconOnTheArmNeedsARobotAndAnOffset) {
+  const std::string file = (dir_ / "cell.json").string() + ": ";
+  const auto on_arm = [&](const std::string& robot, const std::string& field) {
+    return R"({"camera": {"device": "0"}, "table_tags": "t.json", "beacons": {"ports": ["a"]})" +
+           robot + R"(, "beacon_on_arm": )" + field + "}";
+  };
+  const std::string robot = R"(, "robot": {"host": "10.0.0.2"})";
+  const CellProfile profile = ReadText(on_arm(robot, R"({"offset_m": [0, 0.01, 0.03]})"));
+  ASSERT_TRUE(profile.beacon_on_arm_offset_m.has_value());
+  EXPECT_EQ(*profile.beacon_on_arm_offset_m, Eigen::Vector3d(0, 0.01, 0.03));
+  EXPECT_FALSE(ReadText(R"({"camera": {"device": "0"}, "table_tags": "t.json",
+                            "beacons": {"ports": ["a"]}})")
+                   .beacon_on_arm_offset_m.has_value());
+  EXPECT_EQ(ErrorFor(on_arm("", R"({"offset_m": [0, 0, 0.03]})")),
+            file + "beacon_on_arm: a beacon on the arm needs a robot");
+  EXPECT_EQ(ErrorFor(on_arm(robot, R"({"offset_m": [0, 0]})")),
+            file + "beacon_on_arm.offset_m: expected [x, y, z] in metres");
+  EXPECT_EQ(ErrorFor(on_arm(robot, R"({"offset_m": [0, 0, 2]})")),
+            file +
+                "beacon_on_arm.offset_m: expected the beacon's offset from the tool point, "
+                "within 0.5 m");
+  EXPECT_THAT(ErrorFor(on_arm(robot, R"({"offset": [0, 0, 0]})")),
+              HasSubstr(file + "beacon_on_arm.offset: unknown field"));
+}
+
 }  // namespace
 }  // namespace recon::cell

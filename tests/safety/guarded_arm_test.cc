@@ -11,9 +11,10 @@
 #include <thread>
 #include <vector>
 
-#include "devices/sim/simulated_arm.h"
+#include "engine/core/error.h"
 #include "engine/core/rng.h"
 #include "engine/safety/arm_watchdog.h"
+#include "engine/worlds/simulated_arm.h"
 #include "engine/worlds/ur5_arm.h"
 #include "tests/safety/garbage_commands.h"
 #include "tests/worlds/ur5_test_scene.h"
@@ -105,6 +106,42 @@ TEST(GuardedArmTest, EmergencyStopRefusesMotionUntilReleased) {
   EXPECT_EQ(inner.commands.size(), before + 1);
 }
 
+// A simulated world commands once a control period, but its clock's readings carry rounding:
+// 0.7 - 0.6 is not 0.1. With the period given, the acceleration rule is applied over exactly one
+// period, so a run does not depend in the last bit on how long the clock had run before it.
+TEST(GuardedArmTest, ACommandPeriodJudgesWholePeriodsNotClockDifferences) {
+  RecordingArm by_clock, by_period;
+  devices::ManualClock clock;
+  GuardedArm a(by_clock, SafetyLimits{}, clock), b(by_period, SafetyLimits{}, clock);
+  b.SetCommandPeriod(0.1);
+  clock.Set(0.6);
+  a.CommandJointVelocities({0, 0, 0, 0, 0, 0});
+  b.CommandJointVelocities({0, 0, 0, 0, 0, 0});
+  clock.Set(0.7);
+  ASSERT_NE(0.7 - 0.6, 0.1);
+  a.CommandJointVelocities({0.9, 0, 0, 0, 0, 0});
+  b.CommandJointVelocities({0.9, 0, 0, 0, 0, 0});
+  EXPECT_LT(by_clock.commands.back()[0], 0.5);  // 5 rad/s^2 x 0.0999...
+  EXPECT_EQ(by_period.commands.back()[0], 5 * 0.1);
+  EXPECT_THROW(b.SetCommandPeriod(0), UserError);
+  EXPECT_THROW(b.SetCommandPeriod(std::nan("")), UserError);
+}
+
+// After a stop (Stop(), the watchdog, an e-stop's release) the arm is at rest, and the next
+// command may ask for one period's (or lookahead's) acceleration only, however long ago the last
+// command was.
+TEST(GuardedArmTest, AfterAStopTheNextCommandStartsFromRest) {
+  RecordingArm inner;
+  devices::ManualClock clock;
+  GuardedArm arm(inner, SafetyLimits{}, clock);
+  arm.SetCommandPeriod(0.1);
+  arm.CommandJointVelocities({0.4, 0, 0, 0, 0, 0});
+  arm.Stop();
+  clock.Advance(5.0);
+  arm.CommandJointVelocities({0.9, 0, 0, 0, 0, 0});
+  EXPECT_EQ(inner.commands.back()[0], 0.5);
+}
+
 TEST(GuardedArmTest, WatchdogThreadStopsAStalledControlLoop) {
   RecordingArm inner;
   devices::SteadyClock clock;
@@ -139,7 +176,7 @@ TEST(GuardedArmTest, ASimulatedUr5DrivenByGarbageStaysInsideTheEnvelope) {
   worlds::Ur5Arm ur5(scene);
   ur5.Reset(worlds::Ur5Arm::kHome);
   devices::ManualClock clock;
-  sim::SimulatedArm simulated(ur5, clock);
+  worlds::SimulatedArm simulated(ur5, clock);
   const SafetyLimits limits;
   GuardedArm arm(simulated, limits, clock);
   Rng rng(99);  // seed 99: 300 control steps (30 s) of a policy gone wrong

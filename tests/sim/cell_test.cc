@@ -57,7 +57,7 @@ TEST(SimulatedCellTest, ScriptedDemonstrationThroughTheInterfacesPutsTheToastOnT
     // The teacher carried the toast with the gripper closed and let go over the plate.
     EXPECT_GT(closed_steps, 10);
     EXPECT_LT(closed_steps, steps);
-    EXPECT_FALSE(cell->arm().gripper_closed());
+    EXPECT_FALSE(cell->world().arm().GripperClosed());
     // One update per 0.1 s step at 10 Hz, less drops and cut lines (about 3.5%).
     EXPECT_GE(samples, steps * 92 / 100);
     EXPECT_LE(samples, steps);

@@ -1,6 +1,6 @@
 // A real cell's screens, headless: the Calibrate step paced by the teacher, and the Rollouts
-// step's trials on the real arm (set up, running, judged, played back), each state a golden and
-// each control the command it sends.
+// step's trials on the real arm (set up, homing, running, judged, played back), each state a
+// golden and each control the command it sends.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -41,15 +41,17 @@ TEST(RealCellScreensTest, TheGuidedCalibrationSaysWhatToDoAndShowsWhatTheDevices
   harness.Show(s);
   EXPECT_TRUE(harness.driver().Drawn("Collect points and fit"));
   s.calibration.running = true;
-  s.calibration.guided = true;
   s.calibration.points_target = 8;
   s.calibration.points_collected = 3;
-  s.calibration.prompt = "Place 4 of 8: hold still...";
-  s.calibration.tag_seen = true;
-  s.calibration.tag_pixel = {100, 60};
-  s.calibration.taken_pixel = {{40, 30}, {120, 40}, {60, 90}};
-  s.calibration.beacon_uwb_m = {2.31f, -0.52f, 0.33f};
-  s.calibration.held_fraction = 0.6f;
+  GuidedCalibrationView& guided = s.calibration.guided.emplace();
+  guided.points_target = 8;
+  guided.points_taken = 3;
+  guided.prompt = "Place 4 of 8: hold still...";
+  guided.tag_seen = true;
+  guided.tag_pixel = {100, 60};
+  guided.taken_pixel = {{40, 30}, {120, 40}, {60, 90}};
+  guided.beacon_uwb_m = {2.31f, -0.52f, 0.33f};
+  guided.held_fraction = 0.6f;
   s.busy_with = "the calibration";
   harness.Show(s);
   EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
@@ -102,6 +104,15 @@ TEST(RealCellScreensTest, ATrialIsSetUpRunStoppedAndJudgedFromTheRolloutsScreen)
   s.safety.estop = false;
 
   s.trial.message.clear();
+  // Before the policy, the arm returns home: how far it has come, and the same STOP.
+  s.trial.phase = TrialPhase::kHoming;
+  s.trial.homing_progress = 0.4f;
+  harness.Show(s);
+  EXPECT_TRUE(
+      ::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("trial_homing")));
+  harness.driver().Click("STOP the trial");
+  EXPECT_TRUE(Last<StopTrial>(harness.Commands()).has_value());
+
   s.trial.phase = TrialPhase::kRunning;
   s.trial.step = 57;
   s.trial.max_steps = 200;

@@ -13,18 +13,17 @@ namespace {
 
 /// A real cell's calibration under way: the teacher moves the beacon place by place, and the
 /// screen says what to do and shows what the camera and the beacon see.
-void DrawGuidedCalibration(const ScreenContext& context) {
+void DrawGuidedCalibration(const ScreenContext& context, const GuidedCalibrationView& c) {
   const StudioSnapshot& s = context.snapshot;
-  const CalibrationView& c = s.calibration;
   const Status status = c.beacon_silent ? Status::kError
                         : c.tag_seen    ? (c.held_fraction > 0 ? Status::kBusy : Status::kWarning)
                                         : Status::kWarning;
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + Px(560));
   StatusText(status, c.prompt);
   ImGui::PopTextWrapPos();
-  ImGui::ProgressBar(static_cast<float>(c.points_collected) / std::max(1, c.points_target),
+  ImGui::ProgressBar(static_cast<float>(c.points_taken) / std::max(1, c.points_target),
                      ImVec2(Px(360), 0),
-                     Format("%d of %d places taken", c.points_collected, c.points_target).c_str());
+                     Format("%d of %d places taken", c.points_taken, c.points_target).c_str());
   ImGui::ProgressBar(c.held_fraction, ImVec2(Px(360), 0), "held still");
   if (Button("Cancel##calibration")) context.commands.Push(CancelCalibration{});
   // The camera with the tag where it is seen and the places taken, numbered.
@@ -62,7 +61,7 @@ void DrawCalibrateScreen(const ScreenContext& context) {
   ScreenHeader("Calibrate", teach::StepPurpose(teach::Step::kCalibrate));
   const bool blocked = Blocked(s, teach::Step::kCalibrate);
   if (c.running && c.guided) {
-    DrawGuidedCalibration(context);
+    DrawGuidedCalibration(context, *c.guided);
     return;
   }
   if (s.cell_kind == "real" && !c.running) {

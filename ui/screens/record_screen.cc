@@ -189,7 +189,7 @@ void DrawTeacherView(const ScreenContext& context, float width) {
 void DrawTakeControls(const ScreenContext& context, bool blocked, const std::string& why) {
   const StudioSnapshot& s = context.snapshot;
   const bool pending = !s.pending_take.empty();
-  const bool counting = s.recording && s.countdown_s > 0;
+  const bool counting = s.recording && (s.countdown_s > 0 || s.take_homing);
   const float width = std::min(Px(520), ImGui::GetContentRegionAvail().x);
   ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0, 0, 0, 0));
   ImGui::BeginChild("take-controls", ImVec2(width, Px(126)), false,
@@ -221,9 +221,12 @@ void DrawTakeControls(const ScreenContext& context, bool blocked, const std::str
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
   if (pending) {
     StatusText(Status::kWarning, s.pending_take + ".");
+  } else if (counting && s.countdown_s <= 0) {
+    StatusText(Status::kBusy, "The arm returns to its home pose; the take starts when it is there");
   } else if (counting) {
     StatusText(Status::kBusy,
-               Format("Get ready: the take starts in %.0f s", std::ceil(s.countdown_s)));
+               Format("Get ready: the take starts in %.0f s%s", std::ceil(s.countdown_s),
+                      s.take_homing ? " (the arm returns home meanwhile)" : ""));
   } else if (s.recording) {
     // The time limit in view, and a warning before it ends the take.
     const double elapsed = s.recording_samples * s.recording_step_s;

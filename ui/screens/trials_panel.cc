@@ -59,9 +59,16 @@ void DrawTrialUnderWay(const ScreenContext& context) {
       if (Button("End trials")) context.commands.Push(EndTrials{});
       break;
     case TrialPhase::kCountdown:
+    case TrialPhase::kHoming:
     case TrialPhase::kRunning:
       if (t.phase == TrialPhase::kCountdown) {
-        StatusText(Status::kWarning, Format("The arm moves in %.1f s", t.countdown_s));
+        StatusText(Status::kWarning,
+                   Format("The arm moves in %.1f s: it returns home, then the policy runs",
+                          t.countdown_s));
+      } else if (t.phase == TrialPhase::kHoming) {
+        StatusText(Status::kWarning, "The arm returns to its home pose");
+        ImGui::ProgressBar(t.homing_progress, ImVec2(Px(360), 0),
+                           Format("%.0f%% of the way home", 100.0 * t.homing_progress).c_str());
       } else {
         ImGui::ProgressBar(static_cast<float>(t.step) / std::max(1, t.max_steps),
                            ImVec2(Px(360), 0),

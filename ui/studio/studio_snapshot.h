@@ -116,6 +116,20 @@ struct EpisodeView {
 };
 
 /// Calibration as the Calibrate screen shows it.
+/// What a real cell's calibration shows while it runs, paced by the teacher who moves the beacon
+/// (cell::GuidedCalibration): what to do now and what the devices see of it.
+struct GuidedCalibrationView {
+  int points_taken = 0, points_target = 0;
+  std::string prompt;
+  bool tag_seen = false;
+  std::array<float, 2> tag_pixel{0, 0};  ///< the beacon's tag in the camera image
+  /// The places taken so far, where the camera sees them.
+  std::vector<std::array<float, 2>> taken_pixel;
+  std::vector<float> beacon_uwb_m;  ///< the newest reading, the beacons' own frame; empty: none
+  bool beacon_silent = false;
+  float held_fraction = 0;  ///< 0 to 1 through the hold that takes a place
+};
+
 struct CalibrationView {
   bool running = false;
   int points_collected = 0;
@@ -125,17 +139,8 @@ struct CalibrationView {
   double rmse_m = 0, p95_m = 0, threshold_m = 0.10;
   std::vector<double> residual_m;  ///< per point
   std::vector<bool> inlier;
-  /// A real cell's calibration is paced by the teacher, who moves the beacon: what to do now
-  /// and what the devices see of it while it runs (cell::GuidedCalibration).
-  bool guided = false;
-  std::string prompt;
-  bool tag_seen = false;
-  std::array<float, 2> tag_pixel{0, 0};  ///< the beacon's tag in the camera image
-  /// The places taken so far, where the camera sees them.
-  std::vector<std::array<float, 2>> taken_pixel;
-  std::vector<float> beacon_uwb_m;  ///< the newest reading, the beacons' own frame; empty: none
-  bool beacon_silent = false;
-  float held_fraction = 0;  ///< 0 to 1 through the hold that takes a place
+  /// Set while a calibration paced by the teacher runs (a real cell's).
+  std::optional<GuidedCalibrationView> guided;
 };
 
 /// One training run (a method) as the Train screen shows it.
@@ -159,7 +164,8 @@ struct TrainingView {
 enum class TrialPhase {
   kNone,       ///< no trials under way
   kSetUp,      ///< the teacher sets the layout up, then runs the trial
-  kCountdown,  ///< the policy starts when it ends
+  kCountdown,  ///< the arm moves when it ends
+  kHoming,     ///< the arm returns to its home pose, where every demonstration began
   kRunning,    ///< the policy drives the arm
   kJudge,      ///< it ended: the teacher says whether it succeeded
 };
@@ -178,6 +184,7 @@ struct TrialView {
   };
   std::vector<Object> layout;
   double countdown_s = 0;
+  float homing_progress = 0;  ///< 0..1 of the way home (kHoming)
   int step = 0, max_steps = 0;
   bool stopped = false;  ///< the teacher stopped it (kJudge)
   std::string message;   ///< what happened to the last trial (a fault, the e-stop), if anything
@@ -268,6 +275,7 @@ struct StudioSnapshot {
   int recording_max_samples = 0;  ///< where a take ends by itself (the world's episode length)
   double recording_step_s = 0.1;  ///< seconds per sample (the control period)
   double countdown_s = 0;         ///< left before a person's take starts (0: it runs)
+  bool take_homing = false;       ///< the arm returns home before a person's take starts
   /// A take that ended without the task done (it reached the time limit, or the e-stop stopped
   /// it): why, while it waits for the teacher to keep it (as not done) or discard it; "" when
   /// there is none.

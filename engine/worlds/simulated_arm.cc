@@ -1,14 +1,13 @@
-#include "devices/sim/simulated_arm.h"
+#include "engine/worlds/simulated_arm.h"
 
 #include <cmath>
 #include <sstream>
 
 #include "engine/core/error.h"
 
-namespace recon::sim {
+namespace recon::worlds {
 
-SimulatedArm::SimulatedArm(worlds::Ur5Arm& arm, const devices::Clock& clock,
-                           double watchdog_timeout_s)
+SimulatedArm::SimulatedArm(Ur5Arm& arm, const devices::Clock& clock, double watchdog_timeout_s)
     : arm_(arm),
       clock_(clock),
       watchdog_timeout_s_(watchdog_timeout_s),
@@ -66,4 +65,4 @@ std::string SimulatedArm::Describe() const {
   return out.str();
 }
 
-}  // namespace recon::sim
+}  // namespace recon::worlds

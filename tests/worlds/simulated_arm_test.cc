@@ -1,7 +1,7 @@
 // SimulatedArm on the tabletop scene's UR5, physics stepped by the test as the cell would:
 // state, clamping, Stop and the watchdog.
 
-#include "devices/sim/simulated_arm.h"
+#include "engine/worlds/simulated_arm.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/worlds/scene_assets.h"
 
-namespace recon::sim {
+namespace recon::worlds {
 namespace {
 
 constexpr double kPeriod_s = 0.1;
@@ -22,7 +22,7 @@ class SimulatedArmTest : public ::testing::Test {
     ur5_.Reset(worlds::Ur5Arm::kHome);
   }
 
-  // One control period as SimulatedCell::Advance does it: watchdog, physics, clock.
+  // One control period as a world steps it: watchdog, physics, clock.
   void Advance(SimulatedArm& arm) {
     arm.CheckWatchdog();
     ur5_.Step(kPeriod_s);
@@ -108,4 +108,4 @@ TEST_F(SimulatedArmTest, BadTimeoutIsAUserError) {
 }
 
 }  // namespace
-}  // namespace recon::sim
+}  // namespace recon::worlds

@@ -7,18 +7,21 @@
 #include "engine/devices/clock.h"
 #include "engine/worlds/ur5_arm.h"
 
-namespace recon::sim {
+namespace recon::worlds {
 
-/// The simulated UR5 as a devices::Arm. Commands go to the worlds::Ur5Arm, which clamps them to
-/// pi rad/s; the arm does not step physics (the cell does, for the whole scene at once).
+/// The simulated UR5 as a devices::Arm, as its controller behaves: commands go to the Ur5Arm,
+/// which clamps them to pi rad/s; the arm does not step physics (its world does, for the whole
+/// scene at once). The MuJoCo worlds (Tabletop, BinTransfer) hold it behind safety::GuardedArm,
+/// exactly as a real cell holds its robot::UrArm: the envelope, the watchdog and the e-stop are
+/// the guard's, for both.
 ///
-/// Watchdog: a velocity command that is not renewed within `watchdog_timeout_s` of clock time is
-/// replaced by zero, as UR's speedj stops when its stream of commands ends. The simulated arm has
-/// no thread to notice that on its own, so the check runs whenever someone looks: State(), a
-/// gripper command, and CheckWatchdog(), which whoever steps the physics calls first (SimulatedCell
-/// does); a velocity command renews it.
-/// So a stale command never drives the arm for more than one physics step past the timeout. The
-/// gripper keeps its state: a held object is not dropped by a communication gap.
+/// Its own watchdog models the controller's: a velocity command that is not renewed within
+/// `watchdog_timeout_s` of clock time is replaced by zero, as UR's speedj stops when its stream
+/// of commands ends. The simulated arm has no thread to notice that on its own, so the check runs
+/// whenever someone looks: State(), a gripper command, and CheckWatchdog(), which whoever steps
+/// the physics calls first; a velocity command renews it. So a stale command never drives the
+/// arm for more than one physics step past the timeout. The gripper keeps its state: a held
+/// object is not dropped by a communication gap.
 ///
 /// Holds the arm and the clock by reference; their owner keeps them alive.
 class SimulatedArm final : public devices::Arm {
@@ -26,7 +29,7 @@ class SimulatedArm final : public devices::Arm {
   static constexpr double kDefaultWatchdogTimeout_s = 0.5;
 
   /// UserError unless the timeout is a positive number of seconds.
-  SimulatedArm(worlds::Ur5Arm& arm, const devices::Clock& clock,
+  SimulatedArm(Ur5Arm& arm, const devices::Clock& clock,
                double watchdog_timeout_s = kDefaultWatchdogTimeout_s);
 
   /// Positions, velocities and gripper from the simulated arm, stamped with the clock. Runs the
@@ -43,19 +46,19 @@ class SimulatedArm final : public devices::Arm {
   bool CheckWatchdog() const;
   bool watchdog_tripped() const { return tripped_; }
   /// The joint velocities now in force (after the watchdog), as given (before the arm's clamp).
-  const worlds::Ur5Joints& commanded_velocity_rad_s() const { return command_rad_s_; }
+  const Ur5Joints& commanded_velocity_rad_s() const { return command_rad_s_; }
   /// Whether the gripper is commanded closed.
   bool gripper_closed() const { return arm_.GripperClosed(); }
   double watchdog_timeout_s() const { return watchdog_timeout_s_; }
 
  private:
-  worlds::Ur5Arm& arm_;
+  Ur5Arm& arm_;
   const devices::Clock& clock_;
   double watchdog_timeout_s_;
   // The watchdog acts from const State(); these are the only state it changes.
-  mutable worlds::Ur5Joints command_rad_s_{};
+  mutable Ur5Joints command_rad_s_{};
   mutable bool tripped_ = false;
   double last_command_s_ = 0.0;
 };
 
-}  // namespace recon::sim
+}  // namespace recon::worlds
