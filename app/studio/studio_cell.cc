@@ -137,13 +137,14 @@ void StudioCell::Handle(const ui::StudioCommand& command) {
 void StudioCell::Tick() {
   const Clock::time_point now = Clock::now();
   PollGamepad(now);
+  // Before a person's take: the countdown, and meanwhile the arm's return to its home pose,
+  // where every take and every trial starts. The take starts once both are over; an arm already
+  // home (the simulated cell's always is) delays it by nothing.
+  if (homing_take_ && recorder_ && recorder_->recording() && now >= next_homing_) {
+    StepTakeHoming(now);
+  }
   if (recorder_ && recorder_->recording() && (now < take_starts_ || homing_take_)) {
-    // Before a person's take: the countdown, and meanwhile the arm's return to its home pose,
-    // where every take and every trial starts. The take starts once both are over.
-    if (homing_take_ && now >= next_tick_) {
-      next_tick_ = now + kControlPeriod;
-      StepTakeHoming(now);
-    }
+    // Waiting: the arm does not move for the take yet.
   } else if (recorder_ && recorder_->recording()) {
     // A person teleoperating needs the real control rate, whatever --fast says.
     const bool paced = options_.real_time || teleop_mode_ != ui::TeleopMode::kScripted;
@@ -276,7 +277,7 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
   // A simulated scene puts the arm at home itself; a real arm is where the last take left it.
   homing_take_ = teleop_mode_ != ui::TeleopMode::kScripted;
-  take_homing_since_ = Clock::now();
+  take_homing_since_ = next_homing_ = Clock::now();
 }
 
 void StudioCell::StepTakeHoming(Clock::time_point now) {
@@ -299,6 +300,7 @@ void StudioCell::StepTakeHoming(Clock::time_point now) {
     std::vector<float> u(v->begin(), v->end());
     u.push_back(0.0f);  // open: every take begins with the gripper open
     world_->Step(u);
+    next_homing_ = now + kControlPeriod;
   } catch (const UserError& e) {
     homing_take_ = false;
     recorder_.reset();

@@ -235,7 +235,7 @@ class StudioCell {
   std::string status_;
   std::string report_path_;
   bool homing_take_ = false;  ///< a person's take waits for the arm to be home
-  Clock::time_point take_homing_since_;
+  Clock::time_point take_homing_since_, next_homing_;
   bool estop_ = false;
   /// Why the take in recorder_ was set aside unfinished (ui::StudioSnapshot::pending_take).
   std::string pending_take_;
