@@ -28,11 +28,8 @@ void RealCellSource::StartGuidedCalibration(int points) {
     options.points = points;
     options.beacon = kCalibratedBeacon;
     options.beacon_offset_m = *offset;
-    const safety::SafetyLimits& limits = arm->envelope().limits();
-    teach::TeleopArm teleop_arm;
-    teleop_arm.base_in_table = limits.base_in_table;
-    teleop_arm.tool_offset_m = limits.tool_offset_m;
-    arm_calibration_ = std::make_unique<cell::ArmCalibration>(options, teleop_arm);
+    arm_calibration_ = std::make_unique<cell::ArmCalibration>(
+        options, teach::TeleopArmOf(arm->envelope().limits()));
     last_calibration_step_s_ = cell_->clock().NowSeconds();
     return;
   }

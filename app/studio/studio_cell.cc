@@ -280,26 +280,32 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   take_homing_since_ = next_homing_ = Clock::now();
 }
 
+bool StudioCell::StepTowardHome(const std::array<double, 6>& q_rad, Clock::time_point since,
+                                Clock::time_point now) {
+  const std::optional<std::array<double, 6>> v =
+      teach::HomingVelocity(q_rad, worlds::Ur5Arm::kHome);
+  if (!v) return true;
+  if (now - since > kHomingTimeout) {
+    throw UserError(
+        "the arm did not reach its home pose within " +
+        std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kHomingTimeout).count()) +
+        " s (blocked, or in a protective stop?)");
+  }
+  std::vector<float> u(v->begin(), v->end());
+  u.push_back(0.0f);  // the gripper opens on the way: every take and trial begins with it open
+  world_->Step(u);
+  return false;
+}
+
 void StudioCell::StepTakeHoming(Clock::time_point now) {
   safety::GuardedArm* arm = source_->GuardedArmOf(world_.get());
   try {
     if (arm == nullptr) throw UserError("the cell has no arm");
-    const std::optional<std::array<double, 6>> v =
-        teach::HomingVelocity(arm->State().position_rad, worlds::Ur5Arm::kHome);
-    if (!v) {
+    if (StepTowardHome(arm->State().position_rad, take_homing_since_, now)) {
       homing_take_ = false;
       arm->Stop();
       return;
     }
-    if (now - take_homing_since_ > kHomingTimeout) {
-      throw UserError(
-          "the arm did not reach its home pose within " +
-          std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kHomingTimeout).count()) +
-          " s (blocked, or in a protective stop?)");
-    }
-    std::vector<float> u(v->begin(), v->end());
-    u.push_back(0.0f);  // open: every take begins with the gripper open
-    world_->Step(u);
     next_homing_ = now + kControlPeriod;
   } catch (const UserError& e) {
     homing_take_ = false;

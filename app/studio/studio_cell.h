@@ -98,6 +98,12 @@ class StudioCell {
   /// One control period of the arm's return home before a person's take (teach::HomingVelocity);
   /// a fault or a joint too far from home ends the take before it started, and says why.
   void StepTakeHoming(Clock::time_point now);
+  /// One control period of the arm's return to its home pose from `q_rad`, for a take or a trial
+  /// (teach::HomingVelocity, the gripper opening): true, commanding nothing, once it is there.
+  /// UserError for a joint too far from home or a return begun at `since` that is past
+  /// kHomingTimeout.
+  bool StepTowardHome(const std::array<double, 6>& q_rad, Clock::time_point since,
+                      Clock::time_point now);
   /// A person's take is started but waits for its countdown or the arm's return home.
   bool TakeWaiting() const;
   /// Commits the play chunk just recorded and starts the next one while samples remain.

@@ -244,21 +244,7 @@ void StudioCell::StepHoming(Clock::time_point now) {
     run.homing_from_rad = std::max(run.homing_from_rad, left);
     run.homing_progress =
         run.homing_from_rad > 0 ? static_cast<float>(1.0 - left / run.homing_from_rad) : 1.0f;
-    const std::optional<std::array<double, 6>> v = teach::HomingVelocity(q, worlds::Ur5Arm::kHome);
-    if (!v) {
-      StartPolicy();
-      return;
-    }
-    if (now - run.starts > kHomingTimeout) {
-      throw UserError(
-          "the arm did not reach its home pose within " +
-          std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kHomingTimeout).count()) +
-          " s (blocked, or in a protective stop?)");
-    }
-    // The gripper opens on the way: every demonstration began with it open.
-    std::vector<float> u(v->begin(), v->end());
-    u.push_back(0.0f);
-    world_->Step(u);
+    if (StepTowardHome(q, run.starts, now)) StartPolicy();
   } catch (const UserError& e) {
     AbortTrial(std::string("while returning home, ") + e.what());
   }

@@ -9,18 +9,12 @@
 
 namespace recon::teach {
 
-namespace {
-
-// The point the teacher steers is the envelope's tool point, from the arm's base (the
-// simulated cell puts it at the table frame's origin).
 TeleopArm TeleopArmOf(const safety::SafetyLimits& limits) {
   TeleopArm arm;
   arm.base_in_table = limits.base_in_table;
   arm.tool_offset_m = limits.tool_offset_m;
   return arm;
 }
-
-}  // namespace
 
 std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
                                          const TeleopCommand& command, const TeleopArm& arm,

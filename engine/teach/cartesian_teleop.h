@@ -42,6 +42,10 @@ struct TeleopArm {
   double tool_offset_m = 0.1;
 };
 
+/// The arm as its envelope places it: the base where the limits put it, the steered point the
+/// envelope's tool point (the simulated cell's base is the table frame's origin).
+TeleopArm TeleopArmOf(const safety::SafetyLimits& limits);
+
 /// The one Cartesian teleop of both cells, simulated and real: the action (6 joint velocities,
 /// then the gripper, closed above 0.5) that moves the arm's tool point at the commanded table
 /// velocity from joints `q_rad`, holding the tool's orientation (resolved rate over the UR5's DH
