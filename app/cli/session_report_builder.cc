@@ -166,10 +166,20 @@ void AddRealTrials(const SessionResults& results, report::SessionReport& r) {
     const store::RealTrialLog& log = checked.record;
     report::SessionReport::RealTrials trials;
     trials.label = log.label;
+    trials.cell = log.cell;
     trials.successes = log.successes();
     trials.out_of_date = checked.out_of_date;
+    // Trial n set up the n-th test scene of the simulated rollouts: side by side, sim to real.
+    const auto simulated = results.rollouts.find(method);
     for (const store::RealTrial& t : log.trials) {
-      trials.trials.push_back({t.number, t.succeeded, t.stopped, t.reason, t.steps, t.seconds});
+      report::SessionReport::RealTrials::Trial row{t.number, t.succeeded, t.stopped,   t.reason,
+                                                   t.steps,  t.seconds,   std::nullopt};
+      if (simulated != results.rollouts.end() && simulated->second.record.has_success) {
+        for (const store::ScenarioResult& scene : simulated->second.record.per_scenario) {
+          if (scene.seed == t.scene_seed) row.simulated_succeeded = scene.succeeded;
+        }
+      }
+      trials.trials.push_back(row);
     }
     r.real_trials.push_back(trials);
   }

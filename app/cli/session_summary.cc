@@ -208,14 +208,15 @@ std::string SessionInfoText(const store::Session& session, const json& info,
     if (summary.has_success) {
       out << ", success " << Format("%.0f", 100.0 * summary.success_rate) << "%";
     }
-    out << " over " << summary.tests << " scenarios\n";
+    out << " over " << summary.tests << " simulated scenarios\n";
     if (!r.out_of_date.empty()) {
       out << "  OUT OF DATE:    " << method << " rollouts: " << r.out_of_date << "\n";
     }
   }
   for (const auto& [method, t] : results.trials) {
     out << "  real trials:    " << method << ": " << t.record.successes() << " of "
-        << t.record.trials.size() << " succeeded on the real arm\n";
+        << t.record.trials.size() << " succeeded on the real arm"
+        << (t.record.cell.empty() ? "" : " (" + t.record.cell + ")") << "\n";
     if (!t.out_of_date.empty()) {
       out << "  OUT OF DATE:    " << method << " trials: " << t.out_of_date << "\n";
     }

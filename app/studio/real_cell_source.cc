@@ -12,6 +12,16 @@ namespace recon::studio {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// Whether the session's calibration maps this cell's beacons: one made on a real cell. A
+/// session taught in the simulated cell (here for trials) has its simulated beacons' instead.
+bool CalibratedHere(const store::SessionManifest& manifest) {
+  return manifest.cell == "real" && !manifest.calibration_file.empty();
+}
+
+}  // namespace
+
 RealCellSource::RealCellSource(const std::string& profile_path)
     : cell_(std::make_unique<cell::RealCell>(cell::ReadCellProfile(profile_path))) {}
 
@@ -31,7 +41,7 @@ std::unique_ptr<worlds::World> RealCellSource::MakeNewWorld(const teach::Session
 std::unique_ptr<worlds::World> RealCellSource::MakeSessionWorld(const store::Session& session) {
   const store::SessionManifest& m = session.manifest();
   return MakeWorld(
-      m, m.calibration_file.empty() ? "" : (fs::path(session.dir()) / m.calibration_file).string());
+      m, CalibratedHere(m) ? (fs::path(session.dir()) / m.calibration_file).string() : "");
 }
 
 std::unique_ptr<worlds::World> RealCellSource::MakeWorld(const store::SessionManifest& manifest,
@@ -65,7 +75,7 @@ bool RealCellSource::ShowLive(worlds::World&, const store::Session& session,
                               const std::vector<float>& reading, bool, ViewSize,
                               ui::StudioSnapshot& s) {
   const store::SessionManifest& manifest = session.manifest();
-  const bool reading_in_table = !manifest.calibration_file.empty();
+  const bool reading_in_table = CalibratedHere(manifest);
   std::shared_ptr<const devices::CameraFrame> frame;
   try {
     frame = cell_->LatestFrame();
@@ -139,7 +149,7 @@ std::optional<std::vector<float>> RealCellSource::IdleBeaconReading(worlds::Worl
                                                                     const store::Session& session) {
   // Calibrated, the world maps the beacon to the table; before, show that it reports, in its
   // own (UWB) frame.
-  if (!session.manifest().calibration_file.empty()) {
+  if (CalibratedHere(session.manifest())) {
     try {
       return world.BeaconReading();
     } catch (const UserError&) {

@@ -31,7 +31,8 @@ class RealCellSource final : public CellSource {
   std::unique_ptr<worlds::World> MakeNewWorld(const teach::SessionSetup& setup) override;
   /// Cell "real" and its devices.
   void DescribeInto(store::SessionManifest& manifest) const override;
-  /// The task over the devices with the session's UWB -> table transform, once it has one.
+  /// The task over the devices with the session's UWB -> table transform, once it has one (a
+  /// session taught in the simulated cell, here for trials, has none of this cell).
   std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) override;
 
   bool HasScriptedTeacher() const override { return false; }

@@ -18,6 +18,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// Why a session taught in the `cell` cell records nothing in the studio's other cell (short:
+/// the step list shows it under four steps; the Cell screen and refusals say more).
+std::string TaughtElsewhere(const std::string& cell) {
+  return "Taught in the " + cell + " cell, recorded there";
+}
+
 teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInputs& inputs,
                            const std::optional<calib::CalibrationReport>& calibration,
                            const cli::SessionResults& results, bool report_written) {
@@ -52,6 +58,7 @@ teach::WorkflowFacts Facts(const store::Session& session, const SessionViewInput
         .push_back(method);
   }
   f.report_written = report_written;
+  if (m.cell != inputs.studio_cell) f.taught_elsewhere = TaughtElsewhere(m.cell);
   return f;
 }
 
@@ -109,6 +116,7 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   s.session_dir = session.dir();
   s.world = m.world;
   s.cell_kind = m.cell;
+  s.studio_cell = inputs.studio_cell;
   for (const store::DeviceEntry& d : m.devices) {
     if (d.role == "teleop") continue;  // the teleops are listed below, from what is plugged in
     s.devices.push_back({d.role, d.kind, d.detail, true, 0.0, ""});

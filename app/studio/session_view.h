@@ -15,6 +15,9 @@ struct SessionViewInputs {
   bool training = false;
   int calibration_points = 12;
   ui::DeviceView gamepad;  ///< GamepadSource::View()
+  /// The cell the studio drives (CellSource::Kind()); a session taught in another one records
+  /// nothing here (WorkflowFacts::taught_elsewhere).
+  std::string studio_cell = "simulated";
 };
 
 /// The workflow of `facts` into `s`: each step's state, which steps can open, the next one.

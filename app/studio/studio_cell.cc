@@ -66,10 +66,15 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
                     " session is recorded and trained from the command line (recon record, "
                     "recon train)");
   }
-  if (exists && existing->cell != source_->Kind()) {
+  // A session taught in the simulated cell may come to a real arm for trials of its policies
+  // (sim-to-real), nothing else crosses: a real cell's scene has no simulation to record in.
+  const bool trials_here = existing && existing->cell == "simulated" && source_->RunsTrials();
+  if (exists && existing->cell != source_->Kind() && !trials_here) {
     throw UserError(dir + " was taught in " +
-                    (existing->cell == "real" ? "a real cell: open it with --cell PROFILE"
-                                              : "the simulated cell: open it without --cell"));
+                    (existing->cell == "real"
+                         ? "a real cell: open it with --cell PROFILE"
+                         : "the simulated cell: open it without --cell (on a real cell it only "
+                           "runs trials, and this cell has no arm)"));
   }
   if (session_ && fs::equivalent(session_->dir(), dir)) {
     picking_session_ = false;
@@ -370,6 +375,16 @@ void StudioCell::RequireIdle(const char* what) const {
                     pending_take_ + ")");
   }
   if (Busy()) throw UserError(std::string("cannot ") + what + " while something else runs");
+}
+
+void StudioCell::RequireTaughtHere(const char* what) const {
+  const std::string& taught_in = session_->manifest().cell;
+  if (taught_in == source_->Kind()) return;
+  throw UserError(
+      std::string("cannot ") + what + " here: " + session_->dir() + " was taught in the " +
+      taught_in + " cell, and its data comes from there (" +
+      (taught_in == "real" ? "recon-studio --cell PROFILE" : "recon-studio without --cell") +
+      "); on this " + source_->Kind() + " cell its trained policies run trials (Rollouts)");
 }
 
 void StudioCell::RequireNoEmergencyStop(const char* what) const {

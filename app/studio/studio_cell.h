@@ -111,6 +111,9 @@ class StudioCell {
   void RequireIdle(const char* what) const;
   /// For whatever moves the arm.
   void RequireNoEmergencyStop(const char* what) const;
+  /// UserError naming `what` when the session was taught in another cell than this one (it
+  /// came here for trials): its beacons, calibration and recordings belong to that cell.
+  void RequireTaughtHere(const char* what) const;
   /// Engages the e-stop on the cell's arm if the studio's is engaged (a newly made world's arm).
   void HoldEmergencyStop();
 

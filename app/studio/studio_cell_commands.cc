@@ -25,12 +25,14 @@ void StudioCell::Apply(const ui::OpenStep& c) { current_step_ = c.step; }
 
 void StudioCell::Apply(const ui::AssignBeacon& c) {
   RequireIdle("assign a beacon");
+  RequireTaughtHere("assign a beacon");
   session_->AssignBeacon(c.beacon, c.object);
   status_ = "Beacon " + c.beacon + " marks the " + c.object + ".";
 }
 
 void StudioCell::Apply(const ui::StartCalibration&) {
   RequireIdle("calibrate");
+  RequireTaughtHere("calibrate");
   const int points = options_.calibration_points;
   if (source_->GuidesCalibration()) {
     // The teacher moves the beacon place by place; the cell loop follows (StepCalibration).
@@ -94,6 +96,7 @@ void StudioCell::StepCalibration() {
 
 void StudioCell::Apply(const ui::StartRecording&) {
   RequireIdle("record");
+  RequireTaughtHere("record");
   RequireNoEmergencyStop("record");
   const int number = session_->NextDemoNumber();
   StartDemo(number, store::Session::ScenarioSeed(session_->manifest().seed, number, false));
@@ -134,6 +137,7 @@ void StudioCell::Apply(const ui::UndoDelete&) {
 
 void StudioCell::Apply(const ui::ReRecordEpisode& c) {
   RequireIdle("re-record");
+  RequireTaughtHere("re-record");
   RequireNoEmergencyStop("re-record");
   const store::EpisodeEntry& e = session_->Find(c.name);
   StartDemo(e.number, e.meta.seed);
@@ -148,6 +152,7 @@ void StudioCell::Apply(const ui::MarkEpisodeBad& c) {
 
 void StudioCell::Apply(const ui::RecordPlay& c) {
   RequireIdle("record play data");
+  RequireTaughtHere("record play data");
   RequireNoEmergencyStop("record play data");
   if (c.samples < 1) throw UserError("ask for at least one play sample");
   play_target_ = c.samples;

@@ -15,6 +15,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
     s = {};
     ShowWorkflow(teach::WorkflowFacts{}, s);  // the steps say they wait for a session
     s.picking_session = true;
+    s.studio_cell = s.cell_kind = source_->Kind();
     s.recent_sessions = recent_.Openable();
     ShowConnected(s);
     ShowSafety(s);
@@ -98,6 +99,7 @@ void StudioCell::RebuildSessionView() {
   inputs.training = jobs_.RunningKind() == JobKind::kTraining;
   inputs.calibration_points = options_.calibration_points;
   inputs.gamepad = gamepad_.View();
+  inputs.studio_cell = source_->Kind();
   session_view_ = BuildSessionView(*session_, inputs);
 }
 

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
+#include <string>
 #include <utility>
 
 #include "app/cli/result_staleness.h"
@@ -20,6 +22,7 @@
 #include "engine/learn/learner.h"
 #include "engine/store/episode_file.h"
 #include "engine/store/real_trials.h"
+#include "engine/store/rollout_summary.h"
 #include "engine/store/training_record.h"
 #include "engine/teach/homing.h"
 #include "engine/teach/workflow.h"
@@ -28,6 +31,36 @@
 namespace recon::studio {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// The cell the trials ran on, for their log: its devices as a session's manifest describes them
+/// ("camera: ..., arm: ..."), whichever cell the session itself was taught in.
+std::string TrialCell(const CellSource& source) {
+  store::SessionManifest described;
+  source.DescribeInto(described);
+  std::string cell = described.cell;
+  std::string devices;
+  for (const store::DeviceEntry& d : described.devices) {
+    if (d.role == "teleop") continue;
+    devices += (devices.empty() ? "" : ", ") + d.role + ": " + d.kind +
+               (d.detail.empty() ? "" : " " + d.detail);
+  }
+  return devices.empty() ? cell : cell + " (" + devices + ")";
+}
+
+/// The seed trial n's scene derives from (as the n-th simulated rollout's scene does): the
+/// seed of the session's simulated rollouts, this method's first, so each trial is a scene
+/// that was also rolled out in simulation; the session's default test seed when it has none.
+uint64_t TrialTestSeed(const store::Session& session, const std::string& method) {
+  const std::map<std::string, store::RolloutSummary> simulated =
+      store::ReadRolloutSummaries(session);
+  if (const auto own = simulated.find(method); own != simulated.end()) return own->second.seed;
+  if (!simulated.empty()) return simulated.begin()->second.seed;
+  return cli::DefaultTestSeed(session);
+}
+
+}  // namespace
 
 void StudioCell::Apply(const ui::StartTrials& c) {
   RequireIdle("start trials");
@@ -52,7 +85,7 @@ void StudioCell::Apply(const ui::StartTrials& c) {
   run->label = trained ? trained->label : c.method;
   run->model_id = cli::CheckpointModelId(checkpoint);
   run->policy = learn::LoadPolicy(checkpoint);
-  run->test_seed = cli::DefaultTestSeed(*session_);
+  run->test_seed = TrialTestSeed(*session_, c.method);
   const std::optional<store::RealTrialLog> log = store::ReadRealTrialLog(*session_, c.method);
   run->first = (log ? static_cast<int>(log->trials.size()) : 0) + 1;
   run->last = run->first + count - 1;
@@ -135,7 +168,7 @@ void StudioCell::Apply(const ui::JudgeTrial& c) {
   log.method = run.method;
   log.label = run.label;
   log.model_id = run.model_id;
-  log.cell = "real";
+  log.cell = TrialCell(*source_);
   if (static_cast<int>(log.trials.size()) + 1 != run.number) {
     throw UserError("the session's " + run.method + " trials changed while this one ran (" +
                     std::to_string(log.trials.size()) + " judged now): start trials again");

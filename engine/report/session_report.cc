@@ -261,7 +261,7 @@ Part CalibrationPart(const SessionReport& report, FigureFiles& figures) {
 }
 
 Part Rollouts(const SessionReport& report, FigureFiles& figures) {
-  Part part{"rollouts", "Rollouts: Baseline vs RECON", "", ""};
+  Part part{"rollouts", "Simulated rollouts: Baseline vs RECON", "", ""};
   if (report.rollouts.empty()) {
     part.status = "missing";
     part.body = Missing("No rollouts yet", "run " + Code("recon eval --session DIR"));
@@ -317,20 +317,35 @@ Part RealTrialsPart(const SessionReport& report) {
     part.body += OutOfDate(method.label + " trials", method.out_of_date);
     const double rate =
         method.trials.empty() ? 0.0 : double(method.successes) / method.trials.size();
+    // The same scenes in simulation, where the session was rolled out there too: sim to real.
+    int simulated = 0, simulated_successes = 0;
+    for (const auto& t : method.trials) {
+      if (!t.simulated_succeeded) continue;
+      ++simulated;
+      if (*t.simulated_succeeded) ++simulated_successes;
+    }
     summary.push_back(
-        {Text(method.label),
+        {Text(method.label), Text(method.cell.empty() ? "real" : method.cell),
          std::to_string(method.successes) + " of " + std::to_string(method.trials.size()),
-         Percent(rate)});
+         Percent(rate),
+         simulated == 0
+             ? "-"
+             : std::to_string(simulated_successes) + " of " + std::to_string(simulated)});
     for (const auto& t : method.trials) {
       rows.push_back({Text(method.label), std::to_string(t.number),
                       t.succeeded ? "success" : "failure", Text(t.reason),
                       t.stopped ? "stopped by the person" : "ran its time", std::to_string(t.steps),
-                      Seconds(t.seconds)});
+                      Seconds(t.seconds),
+                      !t.simulated_succeeded   ? "-"
+                      : *t.simulated_succeeded ? "success"
+                                               : "failure"});
     }
   }
-  part.body += HtmlTable({"Policy", "Succeeded", "Success"}, summary, {1, 2});
-  part.body +=
-      HtmlTable({"Policy", "Trial", "Verdict", "Why", "End", "Steps", "Time"}, rows, {1, 5, 6});
+  part.body += HtmlTable({"Policy", "Cell", "Succeeded", "Success", "Same scenes, simulated"},
+                         summary, {2, 3, 4});
+  part.body += HtmlTable(
+      {"Policy", "Trial", "Verdict", "Why", "End", "Steps", "Time", "Same scene, simulated"}, rows,
+      {1, 5, 6});
   return part;
 }
 

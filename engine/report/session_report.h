@@ -70,12 +70,16 @@ struct SessionReport {
   /// A method's trials on a real arm (a real cell's Rollouts step), judged by the person.
   struct RealTrials {
     std::string label;
+    std::string cell;  ///< the cell and its devices (RealTrialLog::cell)
     struct Trial {
       int number = 0;
       bool succeeded = false, stopped = false;
       std::string reason;
       int steps = 0;
       double seconds = 0;
+      /// How the method's simulated rollout of the same test scene went, where the session has
+      /// one (a session taught in the simulated cell, tried on a real arm).
+      std::optional<bool> simulated_succeeded;
     };
     std::vector<Trial> trials;
     int successes = 0;

@@ -41,7 +41,9 @@ struct RealTrialLog {
   std::string label;   ///< as its training record's (default: the method)
   /// The model the trials ran (TrainingRecord::model_id), none when it had no training record.
   std::optional<std::string> model_id;
-  std::string cell;  ///< the devices, as the session's manifest describes the real cell
+  /// The cell the trials ran on and its devices ("real (camera: ..., arm: ...)"); the session
+  /// itself may have been taught in the simulated cell.
+  std::string cell;
   std::vector<RealTrial> trials;
 
   int successes() const;

@@ -218,15 +218,33 @@ StepStatus EvaluateReport(const WorkflowFacts& facts, const StepStatus& cell,
   return ReadyOrDone(Step::kReport, facts.report_written, summary);
 }
 
+/// A step done with the cell itself (Beacons, Calibrate, Record, Play data): blocked in a session
+/// taught in another cell, before the steps after it are judged, so that they send the teacher
+/// to that reason rather than to a step that cannot be done here.
+StepStatus OfThisCell(const WorkflowFacts& facts, StepStatus status) {
+  if (facts.taught_elsewhere.empty()) return status;
+  status.state = StepState::kBlocked;
+  if (!facts.trained_methods.empty()) {
+    status.why_blocked =
+        facts.taught_elsewhere + "; here, " + Goto("try its policies", Step::kRollouts);
+  } else if (facts.demos >= MinDemos(facts)) {
+    status.why_blocked = facts.taught_elsewhere + "; here, " + Goto("train it", Step::kTrain);
+  } else {
+    status.why_blocked = facts.taught_elsewhere + "; too few demonstrations to train here: " +
+                         Goto("open another session", Step::kCell);
+  }
+  return status;
+}
+
 /// The steps as their prerequisites alone make them, as if nothing were running.
 std::vector<StepStatus> EvaluatePrerequisites(const WorkflowFacts& facts) {
   std::vector<StepStatus> steps;
   steps.reserve(kNumSteps);
   steps.push_back(EvaluateCell(facts));
-  steps.push_back(EvaluateBeacons(facts, steps[Index(Step::kCell)]));
-  steps.push_back(EvaluateCalibrate(facts, steps[Index(Step::kBeacons)]));
-  steps.push_back(EvaluateRecord(facts, steps[Index(Step::kCalibrate)]));
-  steps.push_back(EvaluatePlay(facts, steps[Index(Step::kCalibrate)]));
+  steps.push_back(OfThisCell(facts, EvaluateBeacons(facts, steps[Index(Step::kCell)])));
+  steps.push_back(OfThisCell(facts, EvaluateCalibrate(facts, steps[Index(Step::kBeacons)])));
+  steps.push_back(OfThisCell(facts, EvaluateRecord(facts, steps[Index(Step::kCalibrate)])));
+  steps.push_back(OfThisCell(facts, EvaluatePlay(facts, steps[Index(Step::kCalibrate)])));
   steps.push_back(EvaluateTrain(facts, steps[Index(Step::kRecord)]));
   steps.push_back(EvaluateRollouts(facts, steps[Index(Step::kTrain)]));
   steps.push_back(EvaluateReport(facts, steps[Index(Step::kCell)], steps[Index(Step::kRecord)]));
@@ -339,7 +357,9 @@ Step NextStep(const WorkflowFacts& facts) {
   for (const StepStatus& status : steps) {
     if (status.state == StepState::kReady && status.step != Step::kPlay) return status.step;
   }
-  return Step::kReport;
+  // Everything done, or nothing to do here (a session taught in another cell without enough
+  // demonstrations to train): the report, where it can be written, else another session.
+  return steps[Index(Step::kReport)].state == StepState::kBlocked ? Step::kCell : Step::kReport;
 }
 
 bool CanOpen(const WorkflowFacts& facts, Step step) {

@@ -51,6 +51,12 @@ struct WorkflowFacts {
   /// other data than the session now holds: they count as not evaluated.
   std::vector<std::string> outdated_evaluations;
   bool report_written = false;
+  /// Non-empty when the session was taught in another cell than the one the studio drives now
+  /// (a session of the simulated cell opened on a real cell, to try its trained policies on the
+  /// real arm): why Beacons, Calibrate, Record and Play data are blocked here, e.g. "Taught in
+  /// the simulated cell, recorded there"; the workflow adds the step to go to. Training, rollouts,
+  /// trials and the report do not depend on where it was taught.
+  std::string taught_elsewhere;
 };
 
 /// kBlocked: cannot be done yet (why_blocked says why). kReady: can be done now (for a done
@@ -87,6 +93,10 @@ struct StepStatus {
 ///   the Baseline can be trained and Train is done once the Baseline is.
 /// - Rollouts: blocked until a method is trained; done when every trained method is evaluated.
 /// - Report: blocked until a session is open and holds a demonstration; done when written.
+/// - A session taught elsewhere (taught_elsewhere): Beacons, Calibrate, Record and Play data are
+///   blocked with that reason, whatever the session holds, sending the teacher to Rollouts once
+///   a method is trained, else to Train when it can be done, else to Cell (another session);
+///   the other steps follow their rules.
 ///
 /// One activity at a time on the data: a running activity makes its own step kBusy
 /// (recording_demos: Record, recording_play: Play data, training: Train), and blocks the steps
@@ -97,7 +107,7 @@ std::vector<StepStatus> EvaluateWorkflow(const WorkflowFacts& facts);
 
 /// What the teacher should do next: the running activity's step if one is busy (their attention
 /// belongs there), else the first step that is ready and not done, skipping the optional Play
-/// data; Report once everything is done.
+/// data; Report once everything is done; Cell when nothing can be done in this session here.
 Step NextStep(const WorkflowFacts& facts);
 
 /// Whether the teacher may open `step`'s screen now: true for a step that is not blocked, for

@@ -196,7 +196,7 @@ TEST_F(StudioRealCellTest, TeachesADemonstrationOnTheRealDevicesAndTheEStopReach
   EXPECT_FALSE(s.calibration.running);
 }
 
-TEST_F(StudioRealCellTest, ABadProfileOrASimulatedSessionIsRefusedByName) {
+TEST_F(StudioRealCellTest, ABadProfileOrASessionOfAnotherCellIsRefusedByName) {
   std::ofstream(dir_ / "bad.json") << R"({"camera": {"device": 7}})";
   StudioOptions options = Options();
   options.cell_profile = (dir_ / "bad.json").string();
@@ -207,19 +207,39 @@ TEST_F(StudioRealCellTest, ABadProfileOrASimulatedSessionIsRefusedByName) {
     EXPECT_THAT(e.what(), HasSubstr("bad.json"));
     EXPECT_THAT(e.what(), HasSubstr("camera.device"));
   }
-  // A session taught in the simulated cell is not opened against real devices.
-  {
-    StudioOptions sim = Options();
-    sim.cell_profile.clear();
-    sim.calibration_file.clear();
-    sim.real_time = false;
-    StudioController controller(sim);
-  }
+  // A session taught in the simulated cell comes to a real cell only for trials on its arm: a
+  // cell without one refuses it, naming why.
+  StudioOptions sim = Options();
+  sim.cell_profile.clear();
+  sim.calibration_file.clear();
+  sim.real_time = false;
+  { StudioController controller(sim); }
+  std::ofstream(dir_ / "no-arm.json")
+      << R"({"camera": {"device": "frames"}, "table_tags": "tags.json",
+             "beacons": {"ports": [")"
+      << beacon_->port() << R"("], "mode": "tlv", "names": {"0xDECA0000000000A1": "plate"}}})";
+  StudioOptions no_arm = Options();
+  no_arm.cell_profile = (dir_ / "no-arm.json").string();
+  no_arm.calibration_file.clear();
   try {
-    StudioController controller(Options());
-    ADD_FAILURE() << "a simulated session was opened in a real cell";
+    StudioController controller(no_arm);
+    ADD_FAILURE() << "a simulated session was opened in a real cell without an arm";
   } catch (const UserError& e) {
     EXPECT_THAT(e.what(), HasSubstr("taught in the simulated cell"));
+    EXPECT_THAT(e.what(), HasSubstr("no arm"));
+  }
+  // And a session taught on a real cell is not opened in the simulated one.
+  StudioOptions real = Options();
+  real.session_dir = (dir_ / "real-session").string();
+  real.calibration_file.clear();
+  { StudioController controller(real); }
+  real.cell_profile.clear();
+  try {
+    StudioController controller(real);
+    ADD_FAILURE() << "a real cell's session was opened in the simulated cell";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("taught in a real cell"));
+    EXPECT_THAT(e.what(), HasSubstr("--cell PROFILE"));
   }
 }
 

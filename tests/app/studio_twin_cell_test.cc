@@ -168,7 +168,8 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   EXPECT_EQ(log->trials[0].steps, trial_one_steps);
   EXPECT_FALSE(log->trials[1].succeeded);
   EXPECT_EQ(log->trials[1].reason, "missed the toast");
-  EXPECT_EQ(log->cell, "real");
+  EXPECT_THAT(log->cell, ::testing::StartsWith("real (camera: "));  // the cell and its devices
+  EXPECT_THAT(log->cell, HasSubstr("arm: "));
   // `recon session info` says so too.
   const cli::SessionResults results = cli::ReadSessionResults(session);
   const nlohmann::json info = cli::SessionInfoJson(session, results);

@@ -324,7 +324,7 @@ TEST(ReportBrowserTest, RenderedDomHasEverySectionAndLoadedFigure) {
 
   for (const char* heading :
        {"Overview", "Training losses", "Beacon traces", "Calibration residuals",
-        "Rollouts: Baseline vs RECON", "Teaching time"}) {
+        "Simulated rollouts: Baseline vs RECON", "Teaching time"}) {
     EXPECT_THAT(dom, HasSubstr("<h2>" + std::string(heading) + "</h2>"));
   }
   for (const char* id :

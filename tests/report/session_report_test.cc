@@ -33,7 +33,7 @@ const char* const kHeadings[] = {"Overview",
                                  "Training losses",
                                  "Beacon traces",
                                  "Calibration residuals",
-                                 "Rollouts: Baseline vs RECON",
+                                 "Simulated rollouts: Baseline vs RECON",
                                  "Teaching time"};
 
 SessionReport::LossHistory Run(const std::string& label, bool with_heads) {

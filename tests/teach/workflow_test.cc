@@ -416,8 +416,48 @@ TEST(WorkflowTest, SummariesReportTheirCounts) {
 
 // Over every combination of the facts' switches: the next step is never blocked, every step up
 // to it can be opened, and a blocked step (only a blocked one) says which step to go to.
+TEST(WorkflowTest, ASessionTaughtInAnotherCellTrainsAndRollsOutButRecordsNothingHere) {
+  const std::string why = "Taught in the simulated cell, recorded there";
+  WorkflowFacts facts = RecordedFacts();
+  facts.play_samples = 40;
+  facts.taught_elsewhere = why;
+  const Step cell_steps[] = {Step::kBeacons, Step::kCalibrate, Step::kRecord, Step::kPlay};
+  for (Step step : cell_steps) {
+    const StepStatus status = StatusOf(facts, step);
+    EXPECT_EQ(status.state, StepState::kBlocked) << StepTitle(step);
+    EXPECT_THAT(status.why_blocked, HasSubstr(why));
+    EXPECT_THAT(status.why_blocked, EndsWith(StepTag(Step::kTrain)));
+    // What the session holds is still said.
+    EXPECT_THAT(StatusOf(facts, Step::kRecord).summary, HasSubstr("3 demonstrations"));
+  }
+  EXPECT_EQ(StateOf(facts, Step::kTrain), StepState::kReady);
+  EXPECT_EQ(NextStep(facts), Step::kTrain);
+  // The teacher can still look at what was recorded (the steps before the next one open).
+  EXPECT_TRUE(CanOpen(facts, Step::kRecord));
+
+  facts.trained_methods = {kBaselineMethod, kReconMethod};
+  EXPECT_THAT(StatusOf(facts, Step::kRecord).why_blocked, EndsWith(StepTag(Step::kRollouts)));
+  EXPECT_EQ(StateOf(facts, Step::kRollouts), StepState::kReady);
+  EXPECT_EQ(NextStep(facts), Step::kRollouts);
+
+  // Too few demonstrations to train: Train says so without sending the teacher to Record.
+  facts = CalibratedFacts();
+  facts.min_demos = 3;
+  facts.demos = 1;
+  facts.taught_elsewhere = why;
+  EXPECT_THAT(StatusOf(facts, Step::kRecord).why_blocked, EndsWith(StepTag(Step::kCell)));
+  EXPECT_THAT(StatusOf(facts, Step::kTrain).why_blocked, HasSubstr(why));
+  EXPECT_EQ(NextStep(facts), Step::kReport);
+  facts.demos = 0;  // not even a report: another session
+  EXPECT_EQ(NextStep(facts), Step::kCell);
+
+  // Taught here, the same facts leave every step to its own rule.
+  facts.taught_elsewhere.clear();
+  EXPECT_EQ(StateOf(facts, Step::kRecord), StepState::kReady);
+}
+
 TEST(WorkflowTest, InvariantsHoldForEveryCombinationOfFacts) {
-  constexpr int kSwitches = 14;
+  constexpr int kSwitches = 15;
   int blocked_seen = 0;
   for (int bits = 0; bits < (1 << kSwitches); ++bits) {
     auto on = [bits](int i) { return ((bits >> i) & 1) != 0; };
@@ -436,6 +476,7 @@ TEST(WorkflowTest, InvariantsHoldForEveryCombinationOfFacts) {
     if (on(11)) facts.trained_methods.push_back(kReconMethod);
     if (on(12)) facts.evaluated_methods = facts.trained_methods;
     facts.report_written = on(13);
+    if (on(14)) facts.taught_elsewhere = "Taught in the simulated cell, recorded there";
     SCOPED_TRACE("facts bits " + std::to_string(bits));
 
     const std::vector<StepStatus> steps = EvaluateWorkflow(facts);

@@ -31,8 +31,19 @@ std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
 StudioSnapshot RealCell(Progress progress, teach::Step step) {
   StudioSnapshot s = SnapshotAt(progress, step);
   s.cell_kind = "real";
+  s.studio_cell = "real";
   s.teacher_view = {};
   return s;
+}
+
+/// RECON's trials 1 (a success, with frames) and 2 (stopped, failed, no frames).
+RealTrialsView TwoJudgedTrials() {
+  RealTrialsView trials;
+  trials.method = "recon";
+  trials.label = "RECON (Play)";
+  trials.successes = 1;
+  trials.trials = {{1, true, false, "", true}, {2, false, true, "missed the toast", false}};
+  return trials;
 }
 
 TEST(RealCellScreensTest, TheGuidedCalibrationSaysWhatToDoAndShowsWhatTheDevicesSee) {
@@ -138,12 +149,7 @@ TEST(RealCellScreensTest, ATrialIsSetUpRunStoppedAndJudgedFromTheRolloutsScreen)
   // Judged trials are listed, and one with frames plays back.
   s.trial = {};
   s.busy_with.clear();
-  RealTrialsView trials;
-  trials.method = "recon";
-  trials.label = "RECON (Play)";
-  trials.successes = 1;
-  trials.trials = {{1, true, false, "", true}, {2, false, true, "missed the toast", false}};
-  s.real_trials = {trials};
+  s.real_trials = {TwoJudgedTrials()};
   s.trial_playback.method = "recon";
   s.trial_playback.number = 1;
   s.trial_playback.frame = 4;
@@ -157,6 +163,36 @@ TEST(RealCellScreensTest, ATrialIsSetUpRunStoppedAndJudgedFromTheRolloutsScreen)
   EXPECT_EQ(shown->number, 1);
   EXPECT_EQ(shown->frame, 0);
   EXPECT_THROW(harness.driver().Click("Play##recon2"), UserError);  // no frames kept: disabled
+}
+
+TEST(RealCellScreensTest, ASimulatedSessionOnARealCellShowsItsSimulatedRolloutsBesideTheTrials) {
+  StudioHarness harness;
+  StudioSnapshot s = RealCell(Progress::kDone, teach::Step::kRollouts);
+  s.cell_kind = "simulated";  // taught in the simulated cell, here for trials on the arm
+  teach::WorkflowFacts facts = testing::FactsAt(Progress::kDone);
+  facts.taught_elsewhere = "Taught in the simulated cell, recorded there";
+  s.steps = teach::EvaluateWorkflow(facts);
+  for (int i = 0; i < teach::kNumSteps; ++i) {
+    s.can_open[i] = teach::CanOpen(facts, teach::kAllSteps[i]);
+  }
+  s.rollout_tests = 10;
+  s.real_trials = {TwoJudgedTrials()};
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("rollouts_sim_to_real")));
+  // Both: trials on the arm, and the simulated rollouts, which can be run again here.
+  harness.Commands();
+  harness.driver().Click("Run 10 trials of RECON (Play)");
+  EXPECT_TRUE(Last<StartTrials>(harness.Commands()).has_value());
+  harness.driver().Click("Run rollouts");
+  EXPECT_TRUE(Last<RunRollouts>(harness.Commands()).has_value());
+
+  // A real cell's own session has no simulated rollouts to show or run.
+  s.cell_kind = "real";
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Run rollouts"), UserError);
+  harness.driver().Click("Run 10 trials of RECON (Play)");
+  EXPECT_TRUE(Last<StartTrials>(harness.Commands()).has_value());
 }
 
 }  // namespace

@@ -64,7 +64,7 @@ void DrawCalibrateScreen(const ScreenContext& context) {
     DrawGuidedCalibration(context, *c.guided);
     return;
   }
-  if (s.cell_kind == "real" && !c.running) {
+  if (s.studio_cell == "real" && !c.running) {
     ImGui::TextWrapped(
         "You will put the beacon, its tag up, at %d places on the table, one after another: each "
         "is taken when the camera has seen the tag hold still for a second and the beacon has "

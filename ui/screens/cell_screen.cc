@@ -50,8 +50,14 @@ void DrawConnectedDevices(const ScreenContext& context) {
 void DrawCellScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Cell", teach::StepPurpose(teach::Step::kCell));
-  ImGui::Text("Cell: %s%s", s.cell_kind.c_str(),
+  ImGui::Text("Cell: %s%s", s.studio_cell.c_str(),
               s.world.empty() ? "" : (", task " + s.world).c_str());
+  if (s.session_open && s.cell_kind != s.studio_cell) {
+    StatusText(Status::kWarning,
+               Format("This session was taught in the %s cell: here its trained policies run "
+                      "trials on the arm (Rollouts); nothing is recorded or calibrated.",
+                      s.cell_kind.c_str()));
+  }
   ImGui::Spacing();
   if (ImGui::BeginTable("devices", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("Device");

@@ -14,9 +14,9 @@ void DrawPlayScreen(const ScreenContext& context) {
       "%s while the camera and the beacons record: these (image, beacon) pairs teach the "
       "features where the objects are, without any demonstration. Optional; it helps RECON most "
       "when demonstrations are few.",
-      s.cell_kind == "real" ? "Move the objects around by hand (the beacon stays on its object)"
-                            : "The simulated teacher moves the bowl around, the plate and its "
-                              "beacon stay");
+      s.studio_cell == "real" ? "Move the objects around by hand (the beacon stays on its object)"
+                              : "The simulated teacher moves the bowl around, the plate and its "
+                                "beacon stay");
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
   CameraView("camera##play", context.textures.camera, Px(420), s.beacons, {});

@@ -105,10 +105,15 @@ void DrawPlayback(const ScreenContext& context) {
 void DrawRolloutsScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Rollouts", teach::StepPurpose(teach::Step::kRollouts));
-  if (s.cell_kind == "real") {
-    DrawTrialsPanel(context);
-    DrawPlayback(context);  // a session taught in the simulated cell before, if any
-    return;
+  // On a real cell the policies run trials on the arm; a session taught in the simulated cell
+  // keeps its simulated rollouts too, on the same test scenes, labelled apart.
+  if (s.studio_cell == "real") DrawTrialsPanel(context);
+  if (s.cell_kind == "real") return;  // no simulation of a real cell's scene to roll out in
+  if (s.studio_cell == "real") {
+    ImGui::Spacing();
+    ImGui::Separator();
+    ImGui::TextUnformatted(
+        "Simulated rollouts (the session's simulated cell, the same test scenes)");
   }
   if (s.rollouts_running) {
     if (Button(s.rollouts_cancelling ? "Cancelling...##cancel-rollouts" : "Cancel rollouts",

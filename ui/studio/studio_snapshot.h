@@ -256,7 +256,10 @@ struct StudioSnapshot {
   teach::Step next_step = teach::Step::kCell;
 
   // Cell.
-  std::string cell_kind = "simulated";
+  std::string cell_kind = "simulated";  ///< the cell the session was taught in (its manifest's)
+  /// The cell this studio drives ("simulated", or "real" with --cell): another than cell_kind
+  /// for a session taught in the simulated cell and opened on a real one to run trials.
+  std::string studio_cell = "simulated";
   std::vector<DeviceView> devices;
   std::vector<ConnectedDeviceView> connected;  ///< what is plugged in (scanned every 2 s)
   bool connected_scanned = false;              ///< false until the first scan finished
