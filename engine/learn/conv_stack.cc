@@ -99,7 +99,8 @@ void ConvStackForward(const std::vector<ConvLayer>& convs, const float* params,
 }
 
 void ConvStackBackward(const std::vector<ConvLayer>& convs, const float* params,
-                       const float* const* images, ConvStackBuffers& buffers, float* grads) {
+                       const float* const* images, ConvStackBuffers& buffers, float* grads,
+                       float* grad_images) {
   const kernels::KernelTable& k = kernels::Kernels();
   for (size_t i = convs.size(); i-- > 0;) {
     const ConvLayer& c = convs[i];
@@ -138,7 +139,7 @@ void ConvStackBackward(const std::vector<ConvLayer>& convs, const float* params,
       w.accumulate = true;
       k.gemm_nt(w);
     }
-    if (i == 0) continue;  // no gradient w.r.t. the images
+    if (i == 0 && grad_images == nullptr) continue;  // training needs none for the images
 
     const float* weight = params + c.weight;
     for (int ic = 0; ic < c.in_channels; ++ic) {
@@ -149,7 +150,8 @@ void ConvStackBackward(const std::vector<ConvLayer>& convs, const float* params,
         }
       }
     }
-    float* grad_input = buffers.layers[i - 1].grad_pooled.data();
+    // The block's input: the previous block's output, or the images themselves.
+    float* grad_input = i == 0 ? grad_images : buffers.layers[i - 1].grad_pooled.data();
     for (int b = 0; b < buffers.batch; ++b) {
       kernels::GemmNNArgs g;
       g.m = c.in_channels;

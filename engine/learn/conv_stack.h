@@ -48,8 +48,11 @@ void ConvStackForward(const std::vector<ConvLayer>& convs, const float* params,
                       const float* const* images, ConvStackBuffers& buffers);
 
 /// Adds the weight and bias gradients to `grads`, given grad_output() and a preceding forward
-/// pass on the same images.
+/// pass on the same images. `grad_images` (optional, [batch][in_channels * in_h * in_w]) receives
+/// the gradient w.r.t. the images as they were passed (already scaled), overwritten: what a
+/// saliency map is made of.
 void ConvStackBackward(const std::vector<ConvLayer>& convs, const float* params,
-                       const float* const* images, ConvStackBuffers& buffers, float* grads);
+                       const float* const* images, ConvStackBuffers& buffers, float* grads,
+                       float* grad_images = nullptr);
 
 }  // namespace recon::learn

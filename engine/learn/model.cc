@@ -97,7 +97,7 @@ void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& 
 
 void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
               const float* grad_beacon_head, ModelBuffers& buffers, float* grads,
-              const float* grad_blind_head, const float* grad_phi_extra) {
+              const float* grad_blind_head, const float* grad_phi_extra, float* grad_images) {
   const int x_dim = arch.spec.x_dim, k = arch.feature_dim();
   if (grad_phi_extra != nullptr) {
     std::copy_n(grad_phi_extra, buffers.grad_phi.size(), buffers.grad_phi.begin());
@@ -134,11 +134,11 @@ void Backward(const Architecture& arch, const float* params, const float* grad_p
                 buffers.feature, grads, buffers.keypoints.grad_output());
     SpatialSoftmaxBackward(arch.keypoints, params, buffers.convs.output(), buffers.keypoints, grads,
                            buffers.convs.grad_output());
-    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads);
+    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads, grad_images);
   } else if (arch.image()) {
     MlpBackward(arch.feature, params, buffers.convs.output(), buffers.grad_phi.data(),
                 buffers.feature, grads, buffers.convs.grad_output());
-    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads);
+    ConvStackBackward(arch.convs, params, buffers.y.data(), buffers.convs, grads, grad_images);
   } else {
     MlpBackward(arch.feature, params, buffers.mlp_input.data(), buffers.grad_phi.data(),
                 buffers.feature, grads, nullptr);

@@ -61,8 +61,11 @@ void ForwardBeacon(const Architecture& arch, const float* params, ModelBuffers& 
 /// branch's, `grad_blind_head` the blind branch's, and the caller has filled buffers.grad_gate.
 /// `grad_phi_extra` ([batch][k], optional) is a loss's gradient on the features themselves
 /// (TrainConfig::play_consistency).
+/// `grad_images` (optional, image feature nets only: [batch][3 S S]) receives the gradient
+/// w.r.t. the images the CNN read (y times image_scale), overwritten.
 void Backward(const Architecture& arch, const float* params, const float* grad_policy_head,
               const float* grad_beacon_head, ModelBuffers& buffers, float* grads,
-              const float* grad_blind_head = nullptr, const float* grad_phi_extra = nullptr);
+              const float* grad_blind_head = nullptr, const float* grad_phi_extra = nullptr,
+              float* grad_images = nullptr);
 
 }  // namespace recon::learn

@@ -100,6 +100,53 @@ void PolicyImpl::RunChunk(Output output, const std::vector<std::vector<float>>& 
   }
 }
 
+std::vector<std::vector<float>> PolicyImpl::ActionImageJacobian(const std::vector<float>& x,
+                                                                const std::vector<float>& y) {
+  if (!arch_.image()) throw UserError("the policy reads no camera image: it has no saliency");
+  CheckSize(x, arch_.spec.x_dim, "x", 0);
+  CheckSize(y, arch_.spec.YSize(), "y", 0);
+  std::lock_guard<std::mutex> lock(mutex_);
+  // One row per action component, the same observation in each: one backward pass gives every
+  // component's gradient at once.
+  const int u_dim = arch_.spec.u_dim, x_dim = arch_.spec.x_dim;
+  const int64_t y_size = arch_.spec.YSize();
+  const float image_scale = arch_.network.image_scale;
+  if (buffers_.batch != u_dim) buffers_.Resize(arch_, u_dim);
+  images_.resize(static_cast<size_t>(u_dim) * y_size);
+  for (int b = 0; b < u_dim; ++b) {
+    float* row_x = buffers_.x.data() + static_cast<size_t>(b) * x_dim;
+    std::copy_n(x.data(), x_dim, row_x);
+    float* row_y = images_.data() + static_cast<size_t>(b) * y_size;
+    for (int64_t i = 0; i < y_size; ++i) row_y[i] = y[i] * image_scale;
+    if (scaling_.ScalesInputs()) scaling_.ApplyToInputs(row_x, row_y);
+    buffers_.y[b] = row_y;
+  }
+  ForwardFeatures(arch_, params_.data(), buffers_);
+  ForwardPolicy(arch_, params_.data(), buffers_);
+  // Row b asks for component b of the first action's mean, in the user's units (the head's
+  // mean times its scale). With a feature gate the acting head is g * seeing + (1 - g) * blind;
+  // only the seeing branch reads the image, and g reads x alone.
+  const int head = 2 * arch_.action_width();
+  std::vector<float> grad_head(static_cast<size_t>(u_dim) * head, 0.0f);
+  for (int b = 0; b < u_dim; ++b) {
+    const float gate = arch_.has_gate() ? buffers_.gate_value[static_cast<size_t>(b)] : 1.0f;
+    grad_head[static_cast<size_t>(b) * head + b] = scaling_.u_scale[static_cast<size_t>(b)] * gate;
+  }
+  if (arch_.has_gate()) std::fill(buffers_.grad_gate.begin(), buffers_.grad_gate.end(), 0.0f);
+  AlignedFloats grads(params_.size(), 0.0f);  // the weights' gradients, not wanted here
+  AlignedFloats grad_images(static_cast<size_t>(u_dim) * y_size, 0.0f);
+  Backward(arch_, params_.data(), grad_head.data(), nullptr, buffers_, grads.data(), nullptr,
+           nullptr, grad_images.data());
+  std::vector<std::vector<float>> jacobian(static_cast<size_t>(u_dim));
+  for (int b = 0; b < u_dim; ++b) {
+    const float* row = grad_images.data() + static_cast<size_t>(b) * y_size;
+    jacobian[static_cast<size_t>(b)].resize(static_cast<size_t>(y_size));
+    // The CNN read y * image_scale.
+    for (int64_t i = 0; i < y_size; ++i) jacobian[static_cast<size_t>(b)][i] = row[i] * image_scale;
+  }
+  return jacobian;
+}
+
 Policy::Policy() = default;
 Policy::Policy(std::shared_ptr<PolicyImpl> impl) : impl_(std::move(impl)) {}
 Policy::~Policy() = default;
@@ -204,6 +251,24 @@ std::vector<float> Policy::PredictBeacon(const std::vector<float>& x,
 std::vector<float> Policy::Features(const std::vector<float>& x,
                                     const std::vector<float>& y) const {
   return Require(impl_).Run(PolicyImpl::Output::kFeatures, {x}, {y}).front();
+}
+
+std::vector<std::vector<float>> Policy::ActionImageJacobian(const std::vector<float>& x,
+                                                            const std::vector<float>& y) const {
+  std::vector<std::vector<float>> sum = Require(impl_).ActionImageJacobian(x, y);
+  if (others_.empty()) return sum;
+  // The ensemble acts on its members' mean action: its gradient is their gradients' mean.
+  for (const std::shared_ptr<PolicyImpl>& member : others_) {
+    const std::vector<std::vector<float>> jacobian = member->ActionImageJacobian(x, y);
+    for (size_t j = 0; j < sum.size(); ++j) {
+      for (size_t i = 0; i < sum[j].size(); ++i) sum[j][i] += jacobian[j][i];
+    }
+  }
+  const float members = static_cast<float>(others_.size() + 1);
+  for (std::vector<float>& row : sum) {
+    for (float& v : row) v /= members;
+  }
+  return sum;
 }
 
 }  // namespace recon::learn

@@ -27,6 +27,12 @@ class PolicyImpl {
                                       const std::vector<std::vector<float>>& ys,
                                       std::vector<float>* gates = nullptr);
 
+  /// d a_j / d y for the first action's mean a (in the user's units) of one observation with a
+  /// camera image: u_dim rows of YSize() values, per pixel value as recorded (0-255). UserError
+  /// for a vector y (no image) or inputs of the wrong size.
+  std::vector<std::vector<float>> ActionImageJacobian(const std::vector<float>& x,
+                                                      const std::vector<float>& y);
+
   const Architecture& arch() const { return arch_; }
   const AlignedFloats& params() const { return params_; }
   const TargetScaling& scaling() const { return scaling_; }
