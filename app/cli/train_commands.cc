@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/cli/option_checks.h"
+#include "app/cli/session_probe.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
@@ -133,9 +134,48 @@ struct EvalFlags {
   std::vector<std::string> methods;  ///< empty: every trained checkpoint
   int tests = 20;
   uint64_t seed = 0;
+  // --probe: what the methods look at, instead of rollouts.
+  bool probe = false;
+  std::vector<std::string> objects;
+  int grid = 10;
+  int readout_scenes = 60;
+  bool json = false;
 };
 
+void RunProbe(const EvalFlags& flags) {
+  const store::Session session = store::Session::Open(flags.session);
+  SessionProbeOptions options;
+  options.methods = flags.methods;
+  options.objects = flags.objects;
+  options.grid.nx = options.grid.ny = flags.grid;
+  options.readout_scenes = flags.readout_scenes;
+  std::unique_ptr<ProgressLine> progress;
+  std::string phase;
+  const store::ProbeSummary summary =
+      ProbeSession(session, options, [&](const std::string& what, int done, int total) {
+        if (what != phase) {
+          if (progress) progress->Finish();
+          progress = std::make_unique<ProgressLine>(what, total);
+          phase = what;
+        }
+        progress->Advance(1);
+        (void)done;
+      });
+  if (progress) progress->Finish();
+  if (flags.json) {
+    std::printf("%s\n", store::ProbeSummaryToJson(summary).dump(2).c_str());
+  } else {
+    std::printf("%s", ProbeSummaryText(summary).c_str());
+    std::printf("wrote %s and the heat maps beside it (%.1f s)\n",
+                session.ProbeSummaryPath().c_str(), summary.seconds);
+  }
+}
+
 void RunEval(const EvalFlags& flags) {
+  if (flags.probe) {
+    RunProbe(flags);
+    return;
+  }
   const store::Session session = store::Session::Open(flags.session);
   const store::SessionManifest& m = session.manifest();
   std::vector<std::string> methods = flags.methods;
@@ -233,8 +273,30 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
   eval->add_option("--tests", eval_flags->tests, "test scenarios")
       ->check(WholeBetween(1, kMaxTests))
       ->capture_default_str();
-  eval->add_option("--seed", eval_flags->seed, "test scenario seed (default: from the session's)")
-      ->check(SeedNumber());
+  CLI::Option* tests = eval->get_option("--tests");
+  CLI::Option* seed = eval->add_option("--seed", eval_flags->seed,
+                                       "test scenario seed (default: from the session's)")
+                          ->check(SeedNumber());
+  CLI::Option* probe = eval->add_flag(
+      "--probe", eval_flags->probe,
+      "instead of rolling out: move each object over a grid of table places in a test scene and "
+      "measure how much each method's action and features change (what it looks at), and read "
+      "each object's position out of the features on other test scenes");
+  probe->excludes(tests)->excludes(seed);
+  eval->add_option("--object", eval_flags->objects,
+                   "with --probe: the object to move (repeatable; default: every one)")
+      ->needs(probe);
+  eval->add_option("--grid", eval_flags->grid, "with --probe: grid places per side")
+      ->check(WholeBetween(2, 100))
+      ->capture_default_str()
+      ->needs(probe);
+  eval->add_option("--readout-scenes", eval_flags->readout_scenes,
+                   "with --probe: test scenes for the features' read-out")
+      ->check(WholeBetween(8, 10000))
+      ->capture_default_str()
+      ->needs(probe);
+  eval->add_flag("--json", eval_flags->json, "with --probe: print the numbers as one JSON object")
+      ->needs(probe);
   eval->callback([eval_flags] { RunEval(*eval_flags); });
 }
 

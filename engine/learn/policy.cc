@@ -253,6 +253,11 @@ std::vector<float> Policy::Features(const std::vector<float>& x,
   return Require(impl_).Run(PolicyImpl::Output::kFeatures, {x}, {y}).front();
 }
 
+std::vector<std::vector<float>> Policy::FeaturesBatch(
+    const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys) const {
+  return Require(impl_).Run(PolicyImpl::Output::kFeatures, xs, ys);
+}
+
 std::vector<std::vector<float>> Policy::ActionImageJacobian(const std::vector<float>& x,
                                                             const std::vector<float>& y) const {
   std::vector<std::vector<float>> sum = Require(impl_).ActionImageJacobian(x, y);

@@ -61,6 +61,9 @@ class Policy {
   std::vector<float> PredictBeacon(const std::vector<float>& x, const std::vector<float>& y) const;
   /// The feature vector phi = f(x, y).
   std::vector<float> Features(const std::vector<float>& x, const std::vector<float>& y) const;
+  /// Features of many observations at once (rows); an ensemble's are its first member's.
+  std::vector<std::vector<float>> FeaturesBatch(const std::vector<std::vector<float>>& xs,
+                                                const std::vector<std::vector<float>>& ys) const;
   /// How the action would change with each pixel value: d a_j / d y_i of Act(x, y), u_dim rows
   /// of y's size, per pixel value as recorded (0-255); an ensemble's is its members' mean. The
   /// input gradient a saliency map is made of. UserError for a policy without a camera image.

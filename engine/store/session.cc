@@ -188,9 +188,10 @@ Session Session::Open(const std::string& dir, Access access) {
   if (access == Access::kReadWrite) session.RequireWritable();
   session.Scan();
   if (access == Access::kReadWrite) {
-    // Killed writers of checkpoints, training records, rollouts and reports left temporaries.
-    for (const char* folder : {"", kCheckpointFolder, kTrainingFolder, kRolloutFolder, "report",
-                               "report/figures", kTrashFolder}) {
+    // Killed writers of checkpoints, training records, rollouts, trials, probes and reports left
+    // temporaries.
+    for (const char* folder : {"", kCheckpointFolder, kTrainingFolder, kRolloutFolder, kTrialFolder,
+                               kProbeFolder, "report", "report/figures", kTrashFolder}) {
       session.recovered_temporaries_ += RemoveDeadTemporariesIn(session.Path(folder));
     }
   }

@@ -143,7 +143,13 @@ class Session {
   std::string RealTrialsPath(const std::string& method) const;
   std::string TrialFramesPath(const std::string& method, int number) const;
   static std::string TrialFramesRelativePath(const std::string& method, int number);
+  /// What the distractor probe found of the trained methods (engine/probe/probe_summary.h), and
+  /// the heat map of each method and object it moved.
+  std::string ProbeSummaryPath() const;
+  static std::string ProbeFigureRelativePath(const std::string& method, const std::string& object);
+  std::string ProbeFigurePath(const std::string& method, const std::string& object) const;
   /// The folders holding them.
+  static constexpr char kProbeFolder[] = "probe";
   static constexpr char kCheckpointFolder[] = "checkpoints";
   static constexpr char kTrainingFolder[] = "training";
   static constexpr char kRolloutFolder[] = "rollouts";

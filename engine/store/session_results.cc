@@ -1,5 +1,6 @@
 // Where a session keeps what was made from its episodes, one file of each kind per method: the
-// model, its training record, its rollouts' summary and their replay; and its report.
+// model, its training record, its rollouts' summary and their replay; what the probe found; and
+// its report.
 
 #include <filesystem>
 
@@ -51,6 +52,18 @@ std::string Session::TrialFramesRelativePath(const std::string& method, int numb
 
 std::string Session::TrialFramesPath(const std::string& method, int number) const {
   return Path(TrialFramesRelativePath(method, number));
+}
+
+std::string Session::ProbeSummaryPath() const {
+  return Path((std::filesystem::path(kProbeFolder) / "probe.json").string());
+}
+
+std::string Session::ProbeFigureRelativePath(const std::string& method, const std::string& object) {
+  return (std::filesystem::path(kProbeFolder) / (method + "_" + object + ".png")).string();
+}
+
+std::string Session::ProbeFigurePath(const std::string& method, const std::string& object) const {
+  return Path(ProbeFigureRelativePath(method, object));
 }
 
 std::string Session::ReportFolder() const { return Path("report"); }

@@ -34,7 +34,6 @@ constexpr int kPaperDemosPerConfiguration = 2;
 constexpr double kToastX = 0.33, kToastJitter = 0.0;
 // A slice of toast: 10 x 10 x 1.6 cm (assets/mjcf/tabletop.xml).
 constexpr double kToastRestZ = 0.008;
-constexpr double kBowlMinX = 0.22, kBowlMaxX = 0.82, kBowlMaxAbsY = 0.5;
 constexpr double kBowlClearPlate = 0.22, kBowlClearToast = 0.16, kBowlClearBeacon = 0.12;
 Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 

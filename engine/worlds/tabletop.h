@@ -63,6 +63,11 @@ class Tabletop : public World {
   /// demonstration scenario.
   static constexpr int kPlayPerScenario = 10;
   static constexpr double kPlateRadius_m = 0.09;
+  /// Where a scene may put the bowl (table frame, metres): the widest of the objects' ranges.
+  static constexpr double kBowlMinX = 0.22, kBowlMaxX = 0.82, kBowlMaxAbsY = 0.5;
+  /// The bowl's and the toast's footprints (assets/mjcf/tabletop.xml: a 7 cm cylinder, a 10 cm
+  /// square slice).
+  static constexpr double kBowlRadius_m = 0.07, kToastRadius_m = 0.05;
   /// Per-axis position noise of a DWM1001's location engine, as the simulated one has it
   /// (devices/uwb/simulated_dwm1001.h) and the cell's calibration measures it: the default beacon
   /// noise of a simulated tabletop session or experiment.
@@ -114,6 +119,12 @@ class Tabletop : public World {
   /// Sets that pose at rest, recomputes positions and renders CameraImage() again.
   void ShowReplayState(const std::vector<double>& state) override;
   int ReplayStateSize() const;
+  /// The table where the scenes put the bowl (the widest of the objects' ranges), and the
+  /// plate's, the bowl's and the toast's footprints (tabletop_probe.cc).
+  std::optional<ObjectArea> PlaceableArea() const override;
+  /// The plate (with its beacon), the bowl or the toast, moved in the table's plane at its
+  /// height; the camera image is drawn again.
+  void PlaceObject(const std::string& object, const std::array<double, 2>& xy) override;
 
   static const std::vector<std::string>& Placements();
   static const std::vector<std::string>& Layouts();

@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct WorldTraits {
   /// Seconds of teaching one step stands for (the control period of a robot world, whose
   /// demonstrations cost the teacher real time); 0 for the abstract 2-D worlds.
   double step_seconds = 0.0;
+};
+
+/// Where a tool may put a world's movable objects (ObjectLayout's), for the distractor probe
+/// (engine/probe): the table's extent in x and y (metres, table frame) and each object's
+/// footprint radius, so objects are not placed into one another.
+struct ObjectArea {
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;
+  std::map<std::string, double> radius_m;
 };
 
 /// A task the robot is taught: scenarios, dynamics, an expert, beacons and a score.
@@ -128,6 +137,18 @@ class World {
   virtual void ShowReplayState(const std::vector<double>& state) {
     (void)state;
     throw UserError("the " + Name() + " world has no replay: its rollouts cannot be shown again");
+  }
+  /// The area objects may be placed in (PlaceObject); none where the world cannot move them
+  /// (the default).
+  virtual std::optional<ObjectArea> PlaceableArea() const { return std::nullopt; }
+  /// Moves `object` (one of ObjectLayout's) to table (x, y) with everything else held, and
+  /// observes again: Observe() shows the scene with the object there. For looking only: Reset()
+  /// before stepping again. UserError naming the valid objects for an unknown one, or when the
+  /// world cannot move its objects.
+  virtual void PlaceObject(const std::string& object, const std::array<double, 2>& xy) {
+    (void)object;
+    (void)xy;
+    throw UserError("the " + Name() + " world cannot move its objects");
   }
 };
 

@@ -107,6 +107,8 @@ std::vector<OptionCase> NumericOptions() {
       {train, "--seed", true},
       {eval, "--tests", true},
       {eval, "--seed", true},
+      {eval + "--probe ", "--grid", true},
+      {eval + "--probe ", "--readout-scenes", true},
       {record, "--demos", true},
       {record, "--play", true},
       {record, "--noise", false},

@@ -38,9 +38,13 @@ using recon::testing::RunRecon;
 // The unprivileged user the permission test runs `recon` as ("nobody").
 constexpr int kNobody = 65534;
 
-/// The JSON document a `--json` command printed (anything printed around it is ignored).
+/// The JSON document a `--json` command printed (anything printed around it, such as a progress
+/// line on stderr, is ignored): from the first line that starts with { or [.
 inline json ParseJsonOutput(const CommandResult& result) {
-  const size_t begin = result.output.find_first_of("{[");
+  size_t begin = result.output.find_first_of("{[");
+  while (begin != std::string::npos && begin > 0 && result.output[begin - 1] != '\n') {
+    begin = result.output.find_first_of("{[", begin + 1);
+  }
   const size_t end = result.output.find_last_of("}]");
   if (begin == std::string::npos || end == std::string::npos || end < begin) {
     ADD_FAILURE() << "no JSON in the output:\n" << result.output;

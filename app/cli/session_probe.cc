@@ -1,0 +1,215 @@
+#include "app/cli/session_probe.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "app/cli/result_staleness.h"
+#include "app/cli/session_training.h"
+#include "app/cli/session_world.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/core/rng.h"
+#include "engine/learn/learner.h"
+#include "engine/probe/feature_readout.h"
+#include "engine/report/heat_map.h"
+#include "engine/store/training_record.h"
+
+namespace recon::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The read-out's scenes come from their own stream of the test seed: never the scenes taught,
+/// and not the probed scene either.
+constexpr uint64_t kReadoutStream = 0x72656164;  // "read"
+constexpr int kMinReadoutScenes = 8;             // one in four held out: at least 2
+constexpr int kMaxReadoutScenes = 10000;
+
+probe::ProbeSubject Subject(const std::string& method, const std::string& label,
+                            const learn::Policy& policy) {
+  probe::ProbeSubject subject;
+  subject.method = method;
+  subject.label = label;
+  subject.act = [policy](const probe::ProbeSubject::Rows& xs, const probe::ProbeSubject::Rows& ys) {
+    return policy.ActBatch(xs, ys);
+  };
+  subject.features = [policy](const probe::ProbeSubject::Rows& xs,
+                              const probe::ProbeSubject::Rows& ys) {
+    return policy.FeaturesBatch(xs, ys);
+  };
+  return subject;
+}
+
+std::vector<std::string> MethodsToProbe(const store::Session& session,
+                                        const std::vector<std::string>& asked) {
+  std::vector<std::string> methods = asked;
+  if (methods.empty()) {
+    for (const char* method : {"baseline", "recon"}) {
+      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
+    }
+    if (methods.empty()) {
+      throw UserError("session " + session.dir() + " has no trained method to probe: run `recon " +
+                      "train --session " + session.dir() + "` first; nothing was written");
+    }
+  }
+  for (const std::string& method : methods) {
+    learn::ParseMethod(method);
+    if (!fs::exists(session.CheckpointPath(method))) {
+      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
+                      " (run `recon train --session " + session.dir() + " --methods " + method +
+                      "`); nothing was written");
+    }
+  }
+  return methods;
+}
+
+/// One heat map per method and object, each object's maps on one colour scale.
+void WriteHeatMaps(const store::Session& session, const probe::ProbeResult& result,
+                   const std::map<std::string, std::array<double, 2>>& layout,
+                   store::ProbeSummary& summary) {
+  EnsureWritableDirectory(fs::path(session.ProbeSummaryPath()).parent_path().string());
+  for (size_t o = 0; o < result.objects.size(); ++o) {
+    double top = 0;
+    for (const auto& probes : result.probes) {
+      for (double v : probes[o].action_change) {
+        if (std::isfinite(v)) top = std::max(top, v);
+      }
+    }
+    for (size_t m = 0; m < result.methods.size(); ++m) {
+      const probe::ObjectProbe& p = result.probes[m][o];
+      report::HeatMap map;
+      map.title = result.labels[m] + ": the " + p.object + " moved";
+      char subtitle[160];
+      std::snprintf(subtitle, sizeof(subtitle),
+                    "action change %.3g per 10 cm of %s motion; scene seed %llu, everything else "
+                    "held",
+                    p.action_change_per_10cm, p.object.c_str(),
+                    static_cast<unsigned long long>(result.scene_seed));
+      map.subtitle = subtitle;
+      map.value_label = "action change";
+      map.x_min = p.bounds[0];
+      map.x_max = p.bounds[1];
+      map.y_min = p.bounds[2];
+      map.y_max = p.bounds[3];
+      map.nx = p.nx;
+      map.ny = p.ny;
+      map.values = p.action_change;
+      map.scale_max = top;
+      map.robot_view = true;
+      for (const auto& [name, xy] : layout) {
+        map.markers.push_back({xy[0], xy[1], name == p.object ? name + " (home)" : name});
+      }
+      // Wide, as the table is from behind the robot (1 m across, 0.6 m deep).
+      report::WriteChart(map, session.ProbeFigurePath(result.methods[m], p.object), 720, 470);
+      summary.methods[result.methods[m]].objects[p.object].figure =
+          store::Session::ProbeFigureRelativePath(result.methods[m], p.object);
+    }
+  }
+}
+
+}  // namespace
+
+store::ProbeSummary ProbeSession(const store::Session& session, const SessionProbeOptions& options,
+                                 const SessionProbeProgress& progress,
+                                 const std::atomic<bool>* cancel) {
+  const auto started = std::chrono::steady_clock::now();
+  const store::SessionManifest& manifest = session.manifest();
+  if (manifest.cell != "simulated") {
+    throw UserError("the probe moves objects in the simulated cell, and " + session.dir() +
+                    " was taught in a " + manifest.cell +
+                    " cell, which RECON Studio cannot simulate; nothing was written");
+  }
+  if (options.readout_scenes < kMinReadoutScenes || options.readout_scenes > kMaxReadoutScenes) {
+    throw UserError("the read-out needs " + std::to_string(kMinReadoutScenes) + " to " +
+                    std::to_string(kMaxReadoutScenes) + " test scenes, got " +
+                    std::to_string(options.readout_scenes));
+  }
+  const std::vector<std::string> methods = MethodsToProbe(session, options.methods);
+  std::vector<probe::ProbeSubject> subjects;
+  store::ProbeSummary summary;
+  for (const std::string& method : methods) {
+    const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
+    const std::string label = trained ? trained->label : method;
+    subjects.push_back(Subject(method, label, learn::LoadPolicy(session.CheckpointPath(method))));
+    store::ProbedMethod& probed = summary.methods[method];
+    probed.label = label;
+    const std::string model_id = CheckpointModelId(session.CheckpointPath(method));
+    if (!model_id.empty()) probed.model_id = model_id;
+  }
+  const std::unique_ptr<worlds::World> world = MakeSessionWorld(manifest, "none");
+  const uint64_t test_seed = DefaultTestSeed(session);
+  summary.scene_seed = Rng::Derive(test_seed, 0);  // the first rollout's scene
+  const probe::ProbeResult result = probe::ProbeObjects(
+      *world, summary.scene_seed, options.objects, options.grid, subjects,
+      [&](int done, int total) {
+        if (progress) progress("moving objects", done, total);
+      },
+      cancel);
+  world->Reset(summary.scene_seed);
+  const std::map<std::string, std::array<double, 2>> layout = world->ObjectLayout();
+
+  summary.readout_seed = Rng::Derive(test_seed, kReadoutStream);
+  summary.readout_scenes = options.readout_scenes;
+  std::vector<uint64_t> seeds;
+  for (int i = 0; i < options.readout_scenes; ++i) {
+    seeds.push_back(Rng::Derive(summary.readout_seed, static_cast<uint64_t>(i)));
+  }
+  const probe::SceneFrames frames = probe::RenderScenes(
+      *world, seeds,
+      [&](int done, int total) {
+        if (progress) progress("rendering read-out scenes", done, total);
+      },
+      cancel);
+  const probe::ObjectProbe& any = result.probes.front().front();
+  summary.nx = any.nx;
+  summary.ny = any.ny;
+  summary.bounds = any.bounds;
+  for (size_t m = 0; m < subjects.size(); ++m) {
+    const auto scores = probe::ReadOutObjects(subjects[m], frames);
+    store::ProbedMethod& probed = summary.methods[methods[m]];
+    for (const probe::ObjectProbe& p : result.probes[m]) {
+      store::ProbedObject& o = probed.objects[p.object];
+      o.action_change_per_10cm = p.action_change_per_10cm;
+      o.feature_change_per_10cm = p.feature_change_per_10cm;
+      const auto score = scores.find(p.object);
+      if (score != scores.end() && score->second) o.readout_r2 = score->second->r2;
+    }
+  }
+  if (cancel != nullptr && cancel->load()) throw probe::ProbeCancelled{};
+  WriteHeatMaps(session, result, layout, summary);
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  store::WriteProbeSummary(session.ProbeSummaryPath(), summary);
+  return summary;
+}
+
+std::string ProbeSummaryText(const store::ProbeSummary& summary) {
+  std::string text;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%-18s %-8s %16s %16s %10s\n", "method", "object",
+                "action /10 cm", "feature /10 cm", "read-out R2");
+  text += line;
+  for (const auto& [method, probed] : summary.methods) {
+    for (const auto& [object, o] : probed.objects) {
+      const std::string r2 = o.readout_r2 ? std::to_string(*o.readout_r2).substr(0, 5) : "-";
+      std::snprintf(line, sizeof(line), "%-18s %-8s %16.4g %16.4g %10s\n", probed.label.c_str(),
+                    object.c_str(), o.action_change_per_10cm, o.feature_change_per_10cm,
+                    r2.c_str());
+      text += line;
+    }
+  }
+  std::snprintf(line, sizeof(line),
+                "objects moved one at a time over a %d x %d grid in test scene %llu; read-out on "
+                "%d test scenes (seeds from %llu, one in four held out)\n",
+                summary.nx, summary.ny, static_cast<unsigned long long>(summary.scene_seed),
+                summary.readout_scenes, static_cast<unsigned long long>(summary.readout_seed));
+  text += line;
+  return text;
+}
+
+}  // namespace recon::cli

@@ -1,0 +1,40 @@
+#pragma once
+
+// `recon eval --probe` (and the studio's "Check what it looks at"): the distractor probe and the
+// feature read-out of a session's trained methods, with their heat maps, kept in the session.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/probe/distractor_probe.h"
+#include "engine/store/probe_summary.h"
+#include "engine/store/session.h"
+
+namespace recon::cli {
+
+struct SessionProbeOptions {
+  std::vector<std::string> methods;  ///< empty: every trained method
+  std::vector<std::string> objects;  ///< empty: every object of the world
+  probe::ProbeGrid grid;             ///< 10 x 10 over the whole table by default
+  int readout_scenes = 60;           ///< test scenes the read-out is fitted and scored on
+};
+
+/// How far the probe has come: a short phrase and units done of all.
+using SessionProbeProgress = std::function<void(const std::string& what, int done, int total)>;
+
+/// Probes every method on the first scene of the session's test plan (the first rollout's),
+/// reads the objects out of its features on `readout_scenes` other test scenes, writes the heat
+/// maps and probe/probe.json into the session, and returns the summary. Everything it needs is
+/// checked before it writes: UserError for a session of a real cell (the probe moves objects in
+/// the simulated cell), a method that is not trained, an object the world does not have (naming
+/// the valid ones) or a grid that leaves the table. probe::ProbeCancelled when cancelled.
+store::ProbeSummary ProbeSession(const store::Session& session, const SessionProbeOptions& options,
+                                 const SessionProbeProgress& progress = nullptr,
+                                 const std::atomic<bool>* cancel = nullptr);
+
+/// The summary as a table for people, one row per method and object.
+std::string ProbeSummaryText(const store::ProbeSummary& summary);
+
+}  // namespace recon::cli

@@ -1,0 +1,177 @@
+#include "engine/probe/distractor_probe.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include "engine/core/error.h"
+
+namespace recon::probe {
+
+namespace {
+
+constexpr int kMaxGridSide = 100;
+/// Cells nearer home than this say little per centimetre (a change over nothing): not averaged.
+constexpr double kMinMotion_m = 0.02;
+constexpr double kPer_m = 0.1;  // "per 10 cm"
+
+std::string Metres(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f", v);
+  return text;
+}
+
+std::string Names(const std::map<std::string, std::array<double, 2>>& layout) {
+  std::string names;
+  for (const auto& [name, place] : layout) names += (names.empty() ? "" : ", ") + name;
+  return names;
+}
+
+std::array<double, 4> GridBounds(const ProbeGrid& grid, const worlds::ObjectArea& area) {
+  if (grid.nx < 2 || grid.ny < 2 || grid.nx > kMaxGridSide || grid.ny > kMaxGridSide) {
+    throw UserError("a probe grid has 2 to " + std::to_string(kMaxGridSide) +
+                    " places per side, got " + std::to_string(grid.nx) + " x " +
+                    std::to_string(grid.ny));
+  }
+  const std::array<double, 4> table = {area.x_min, area.x_max, area.y_min, area.y_max};
+  const std::array<double, 4>& b = grid.bounds;
+  if (b == std::array<double, 4>{0, 0, 0, 0}) return table;
+  for (double v : b) {
+    if (!std::isfinite(v)) throw UserError("the probe grid's bounds must be finite numbers");
+  }
+  if (!(b[0] < b[1]) || !(b[2] < b[3])) {
+    throw UserError("the probe grid's bounds are empty: x from " + Metres(b[0]) + " to " +
+                    Metres(b[1]) + ", y from " + Metres(b[2]) + " to " + Metres(b[3]));
+  }
+  constexpr double kSlack_m = 1e-9;
+  if (b[0] < table[0] - kSlack_m || b[1] > table[1] + kSlack_m || b[2] < table[2] - kSlack_m ||
+      b[3] > table[3] + kSlack_m) {
+    throw UserError("the probe grid leaves the table: objects go at x " + Metres(table[0]) +
+                    " to " + Metres(table[1]) + " m and y " + Metres(table[2]) + " to " +
+                    Metres(table[3]) + " m");
+  }
+  return b;
+}
+
+double Distance(const std::vector<float>& a, const std::vector<float>& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+    const double d = static_cast<double>(a[i]) - b[i];
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+/// One method's changes over the rendered places: row 0 is home, row r + 1 is place cells[r].
+ObjectProbe Measure(const ProbeSubject& subject, const ProbeSubject::Rows& xs,
+                    const ProbeSubject::Rows& ys, const std::vector<int>& cells,
+                    const std::vector<double>& motion_m, ObjectProbe probe) {
+  const ProbeSubject::Rows actions = subject.act(xs, ys);
+  const ProbeSubject::Rows features = subject.features(xs, ys);
+  const size_t n = static_cast<size_t>(probe.nx) * probe.ny;
+  probe.action_change.assign(n, std::numeric_limits<double>::quiet_NaN());
+  probe.feature_change.assign(n, std::numeric_limits<double>::quiet_NaN());
+  double action_sum = 0, feature_sum = 0;
+  int counted = 0;
+  for (size_t r = 0; r < cells.size(); ++r) {
+    const size_t cell = static_cast<size_t>(cells[r]);
+    probe.action_change[cell] = Distance(actions[r + 1], actions[0]);
+    probe.feature_change[cell] = Distance(features[r + 1], features[0]);
+    if (motion_m[r] < kMinMotion_m) continue;
+    action_sum += probe.action_change[cell] / motion_m[r] * kPer_m;
+    feature_sum += probe.feature_change[cell] / motion_m[r] * kPer_m;
+    ++counted;
+  }
+  if (counted > 0) {
+    probe.action_change_per_10cm = action_sum / counted;
+    probe.feature_change_per_10cm = feature_sum / counted;
+  }
+  return probe;
+}
+
+}  // namespace
+
+ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
+                         const std::vector<std::string>& objects, const ProbeGrid& grid,
+                         const std::vector<ProbeSubject>& subjects, const ProbeProgress& progress,
+                         const std::atomic<bool>* cancel) {
+  const std::optional<worlds::ObjectArea> area = world.PlaceableArea();
+  if (!area) {
+    throw UserError("the " + world.Name() +
+                    " world cannot move its objects: the probe needs a simulated scene (the "
+                    "simulated cell's tabletop, or the digital twin)");
+  }
+  if (subjects.empty()) throw UserError("the probe needs a trained method to probe");
+  const std::array<double, 4> bounds = GridBounds(grid, *area);
+  world.Reset(scene_seed);
+  const std::map<std::string, std::array<double, 2>> layout = world.ObjectLayout();
+  ProbeResult result;
+  result.scene_seed = scene_seed;
+  result.objects = objects;
+  if (result.objects.empty()) {
+    for (const auto& [name, place] : layout) result.objects.push_back(name);
+  }
+  for (const std::string& object : result.objects) {
+    if (!layout.count(object)) {
+      throw UserError("the " + world.Name() + " world has no object \"" + object +
+                      "\" (valid: " + Names(layout) + ")");
+    }
+  }
+  for (const ProbeSubject& s : subjects) {
+    result.methods.push_back(s.method);
+    result.labels.push_back(s.label);
+  }
+  result.probes.assign(subjects.size(), {});
+  const int total = static_cast<int>(result.objects.size()) * grid.nx * grid.ny;
+  int done = 0;
+  const auto radius = [&](const std::string& name) {
+    const auto found = area->radius_m.find(name);
+    return found == area->radius_m.end() ? 0.0 : found->second;
+  };
+  for (const std::string& object : result.objects) {
+    world.Reset(scene_seed);
+    const std::array<double, 2> home = layout.at(object);
+    const worlds::Observation seen = world.Observe();
+    ProbeSubject::Rows xs = {seen.x}, ys = {seen.y};
+    std::vector<int> cells;
+    std::vector<double> motion_m;
+    for (int iy = 0; iy < grid.ny; ++iy) {
+      for (int ix = 0; ix < grid.nx; ++ix) {
+        if (cancel != nullptr && cancel->load()) throw ProbeCancelled{};
+        const std::array<double, 2> place = {
+            bounds[0] + (ix + 0.5) * (bounds[1] - bounds[0]) / grid.nx,
+            bounds[2] + (iy + 0.5) * (bounds[3] - bounds[2]) / grid.ny};
+        bool overlaps = false;
+        for (const auto& [other, where] : layout) {
+          if (other == object) continue;
+          overlaps |=
+              std::hypot(place[0] - where[0], place[1] - where[1]) < radius(object) + radius(other);
+        }
+        if (!overlaps) {
+          world.PlaceObject(object, place);
+          const worlds::Observation moved = world.Observe();
+          xs.push_back(moved.x);
+          ys.push_back(moved.y);
+          cells.push_back(iy * grid.nx + ix);
+          motion_m.push_back(std::hypot(place[0] - home[0], place[1] - home[1]));
+        }
+        if (progress) progress(++done, total);
+      }
+    }
+    ObjectProbe empty;
+    empty.object = object;
+    empty.home = home;
+    empty.bounds = bounds;
+    empty.nx = grid.nx;
+    empty.ny = grid.ny;
+    for (size_t m = 0; m < subjects.size(); ++m) {
+      result.probes[m].push_back(Measure(subjects[m], xs, ys, cells, motion_m, empty));
+    }
+  }
+  world.Reset(scene_seed);  // the scene as it was
+  return result;
+}
+
+}  // namespace recon::probe

@@ -1,0 +1,89 @@
+// `recon eval --probe`: what a session's trained methods look at, through the real binary on a
+// real tabletop session (MuJoCo, EGL, trained models): the numbers as text and as the JSON the
+// issue names, the heat maps in the session, and every bad input refused by name with nothing
+// written.
+
+#include "tests/app/session_cli_fixture.h"
+
+namespace recon::session_cli_testing {
+namespace {
+
+constexpr char kPng[] = "\x89PNG";
+
+TEST_F(SessionCliTest, ProbePrintsWhatEachMethodLooksAtAndKeepsItsHeatMaps) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world tabletop --demos 2 --play 10 --seed 70");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("train --session " + session.string() + " --steps 30 --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  r = RunRecon("eval --session " + session.string() +
+               " --probe --grid 4 --readout-scenes 12 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json printed = ParseJsonOutput(r);
+  ASSERT_TRUE(printed.contains("methods")) << r.output;
+  for (const char* method : {"baseline", "recon"}) {
+    ASSERT_TRUE(printed["methods"].contains(method)) << printed.dump(1);
+    for (const char* object : {"bowl", "plate", "toast"}) {
+      const json& o = printed["methods"][method][object];
+      ASSERT_TRUE(o.is_object()) << method << " " << object;
+      EXPECT_TRUE(o["action_change_per_10cm"].is_number());
+      EXPECT_GE(o["action_change_per_10cm"].get<double>(), 0.0);
+      EXPECT_TRUE(o["feature_change_per_10cm"].is_number());
+      // The toast waits at one place in every scene: nothing to read out.
+      if (std::string(object) == "toast") {
+        EXPECT_TRUE(o["readout_r2"].is_null());
+      } else {
+        EXPECT_TRUE(o["readout_r2"].is_number());
+      }
+      const fs::path figure = session / o["figure"].get<std::string>();
+      EXPECT_EQ(ReadBytes(figure).substr(0, 4), kPng) << figure;
+    }
+  }
+  EXPECT_EQ(printed["grid"]["nx"], 4);
+  EXPECT_EQ(printed["readout"]["scenes"], 12);
+  // The session keeps what was printed.
+  EXPECT_EQ(ReadJson(session / "probe" / "probe.json")["methods"], printed["methods"]);
+
+  // As text: a row per method and object, and where the numbers went.
+  r = RunRecon("eval --session " + session.string() + " --probe --grid 3 --object bowl");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("RECON (Play)"));
+  EXPECT_THAT(r.output, HasSubstr("bowl"));
+  EXPECT_THAT(r.output, HasSubstr("3 x 3 grid"));
+  EXPECT_THAT(r.output, HasSubstr("moving objects"));  // the progress line
+  EXPECT_THAT(r.output, HasSubstr("probe.json"));
+}
+
+TEST_F(SessionCliTest, ProbeRefusesBadInputByNameAndWritesNothing) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world tabletop --demos 2 --seed 70");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string probe = "eval --session " + session.string() + " --probe ";
+  // Nothing trained yet.
+  r = RunRecon(probe);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("no trained method to probe"));
+  r = RunRecon("train --session " + session.string() + " --methods baseline --steps 20");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const struct {
+    std::string args, words;
+  } cases[] = {
+      {probe + "--method recon", "recon is not trained"},
+      {probe + "--object cup", "no object \"cup\" (valid: bowl, plate, toast)"},
+      {probe + "--grid 1", "--grid"},
+      {probe + "--readout-scenes 4", "--readout-scenes"},
+      {probe + "--tests 5", "--tests"},
+      {"eval --session " + session.string() + " --object bowl", "--probe"},
+      {"eval --session " + session.string() + " --json", "--probe"},
+  };
+  for (const auto& c : cases) {
+    r = RunRecon(c.args);
+    EXPECT_NE(r.exit_code, 0) << c.args;
+    EXPECT_THAT(r.output, HasSubstr(c.words)) << c.args;
+    EXPECT_FALSE(fs::exists(session / "probe")) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace recon::session_cli_testing
