@@ -30,6 +30,9 @@ TARGETS = {
     # Issue 6: DWM1001 beacons (uwb_bench).
     "uwb_lec_lines_per_second": (100000.0, "lines/s", "min"),
     "uwb_pty_line_to_reading_median": (2000.0, "us", "max"),
+    # Issue 18: what a policy looks at, on 2 cores.
+    "probe_tabletop_10x10_two_methods": (20.0, "s", "max"),
+    "BM_SaliencyGradient64": (50.0, "ms", "max"),
 }
 # Rates the cell benchmarks report as counters: result name -> (benchmark, counter, unit).
 COUNTERS = {
@@ -52,6 +55,8 @@ COUNTERS = {
     "studio_train_to_rollouts_4_demos":
         ("BM_StudioTrainToRolloutsFourDemos/iterations:1/repeats:1/real_time",
          "train_to_rollouts_s", "s"),
+    "probe_tabletop_10x10_two_methods":
+        ("BM_ProbeTabletop10x10TwoMethods/iterations:1/real_time", "probe_s", "s"),
     "uwb_lec_lines_per_second": ("BM_LecParseLines", "lines_per_s", "lines/s"),
     "uwb_tlv_frames_per_second": ("BM_TlvParseFrames", "frames_per_s", "frames/s"),
     "uwb_pty_line_to_reading_median":

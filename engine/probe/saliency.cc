@@ -49,7 +49,18 @@ SaliencyMap GradientSaliency(const learn::Policy& policy, const std::vector<floa
 
 SaliencyMap OcclusionSaliency(const learn::Policy& policy, const std::vector<float>& x,
                               const std::vector<float>& y, int patch, int stride) {
-  SaliencyMap map = EmptyMap(policy);
+  const SaliencyMap shape = EmptyMap(policy);
+  return OcclusionSaliency(
+      [&policy](const std::vector<std::vector<float>>& xs,
+                const std::vector<std::vector<float>>& ys) { return policy.ActBatch(xs, ys); },
+      shape.width, x, y, patch, stride);
+}
+
+SaliencyMap OcclusionSaliency(const ActBatchFunction& act, int size, const std::vector<float>& x,
+                              const std::vector<float>& y, int patch, int stride) {
+  SaliencyMap map;
+  map.width = map.height = size;
+  map.value.assign(static_cast<size_t>(size) * size, 0.0f);
   if (patch < 1 || stride < 1 || patch > std::min(map.width, map.height)) {
     throw UserError("an occlusion patch is 1 to " +
                     std::to_string(std::min(map.width, map.height)) +
@@ -90,8 +101,12 @@ SaliencyMap OcclusionSaliency(const learn::Policy& policy, const std::vector<flo
       ys.push_back(std::move(occluded));
     }
   }
-  const std::vector<float> base = policy.Act(x, y);
-  const std::vector<std::vector<float>> actions = policy.ActBatch(xs, ys);
+  // The unoccluded image last, in the same batch.
+  xs.push_back(x);
+  ys.push_back(y);
+  std::vector<std::vector<float>> actions = act(xs, ys);
+  const std::vector<float> base = actions.back();
+  actions.pop_back();
   std::vector<int> covered(plane, 0);
   size_t k = 0;
   for (int r : rows) {

@@ -2,6 +2,7 @@
 
 // Saliency: which pixels of a camera frame drive a policy's action.
 
+#include <functional>
 #include <vector>
 
 #include "engine/learn/policy.h"
@@ -21,9 +22,17 @@ struct SaliencyMap {
 SaliencyMap GradientSaliency(const learn::Policy& policy, const std::vector<float>& x,
                              const std::vector<float>& y);
 
+/// Actions of many observations at once (rows), as Policy::ActBatch gives them.
+using ActBatchFunction = std::function<std::vector<std::vector<float>>(
+    const std::vector<std::vector<float>>& xs, const std::vector<std::vector<float>>& ys)>;
+
 /// Occlusion saliency: a `patch` x `patch` square of the image's mean colour slid over it by
 /// `stride` pixels; a pixel's value is the mean |a(occluded) - a(y)| over the patches that
-/// cover it. UserError for a patch or stride below 1 or a patch larger than the image.
+/// cover it. `y` is 3 x size x size, channels first. UserError for a patch or stride below 1,
+/// a patch larger than the image, or an image of another size.
+SaliencyMap OcclusionSaliency(const ActBatchFunction& act, int size, const std::vector<float>& x,
+                              const std::vector<float>& y, int patch = 8, int stride = 4);
+/// The policy's (UserError for one without a camera image).
 SaliencyMap OcclusionSaliency(const learn::Policy& policy, const std::vector<float>& x,
                               const std::vector<float>& y, int patch = 8, int stride = 4);
 
