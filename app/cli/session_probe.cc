@@ -68,51 +68,56 @@ std::vector<std::string> MethodsToProbe(const store::Session& session,
   return methods;
 }
 
-/// One heat map per method and object, each object's maps on one colour scale.
-void WriteHeatMaps(const store::Session& session, const probe::ProbeResult& result,
-                   const std::map<std::string, std::array<double, 2>>& layout,
-                   store::ProbeSummary& summary) {
+/// One heat map per method and object into the session, each object's maps on one scale.
+void WriteHeatMaps(const store::Session& session, store::ProbeSummary& summary) {
   EnsureWritableDirectory(fs::path(session.ProbeSummaryPath()).parent_path().string());
-  for (size_t o = 0; o < result.objects.size(); ++o) {
-    double top = 0;
-    for (const auto& probes : result.probes) {
-      for (double v : probes[o].action_change) {
-        if (std::isfinite(v)) top = std::max(top, v);
-      }
-    }
-    for (size_t m = 0; m < result.methods.size(); ++m) {
-      const probe::ObjectProbe& p = result.probes[m][o];
-      report::HeatMap map;
-      map.title = result.labels[m] + ": the " + p.object + " moved";
-      char subtitle[160];
-      std::snprintf(subtitle, sizeof(subtitle),
-                    "action change %.3g per 10 cm of %s motion; scene seed %llu, everything else "
-                    "held",
-                    p.action_change_per_10cm, p.object.c_str(),
-                    static_cast<unsigned long long>(result.scene_seed));
-      map.subtitle = subtitle;
-      map.value_label = "action change";
-      map.x_min = p.bounds[0];
-      map.x_max = p.bounds[1];
-      map.y_min = p.bounds[2];
-      map.y_max = p.bounds[3];
-      map.nx = p.nx;
-      map.ny = p.ny;
-      map.values = p.action_change;
-      map.scale_max = top;
-      map.robot_view = true;
-      for (const auto& [name, xy] : layout) {
-        map.markers.push_back({xy[0], xy[1], name == p.object ? name + " (home)" : name});
-      }
+  for (auto& [method, probed] : summary.methods) {
+    for (auto& [object, o] : probed.objects) {
       // Wide, as the table is from behind the robot (1 m across, 0.6 m deep).
-      report::WriteChart(map, session.ProbeFigurePath(result.methods[m], p.object), 720, 470);
-      summary.methods[result.methods[m]].objects[p.object].figure =
-          store::Session::ProbeFigureRelativePath(result.methods[m], p.object);
+      report::WriteChart(ProbeHeatMap(summary, method, object),
+                         session.ProbeFigurePath(method, object), 720, 470);
+      o.figure = store::Session::ProbeFigureRelativePath(method, object);
     }
   }
 }
 
 }  // namespace
+
+report::HeatMap ProbeHeatMap(const store::ProbeSummary& summary, const std::string& method,
+                             const std::string& object) {
+  const store::ProbedMethod& probed = summary.methods.at(method);
+  const store::ProbedObject& o = probed.objects.at(object);
+  double top = 0;  // the object's largest change over every method: one colour scale
+  for (const auto& [other, p] : summary.methods) {
+    const auto found = p.objects.find(object);
+    if (found == p.objects.end()) continue;
+    for (double v : found->second.action_change) {
+      if (std::isfinite(v)) top = std::max(top, v);
+    }
+  }
+  report::HeatMap map;
+  map.title = probed.label + ": the " + object + " moved";
+  char subtitle[160];
+  std::snprintf(subtitle, sizeof(subtitle),
+                "action change %.3g per 10 cm of %s motion; scene seed %llu, everything else held",
+                o.action_change_per_10cm, object.c_str(),
+                static_cast<unsigned long long>(summary.scene_seed));
+  map.subtitle = subtitle;
+  map.value_label = "action change";
+  map.x_min = summary.bounds[0];
+  map.x_max = summary.bounds[1];
+  map.y_min = summary.bounds[2];
+  map.y_max = summary.bounds[3];
+  map.nx = summary.nx;
+  map.ny = summary.ny;
+  map.values = o.action_change;
+  map.scale_max = top;
+  map.robot_view = true;
+  for (const auto& [name, xy] : summary.layout) {
+    map.markers.push_back({xy[0], xy[1], name == object ? name + " (home)" : name});
+  }
+  return map;
+}
 
 store::ProbeSummary ProbeSession(const store::Session& session, const SessionProbeOptions& options,
                                  const SessionProbeProgress& progress,
@@ -151,7 +156,7 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
       },
       cancel);
   world->Reset(summary.scene_seed);
-  const std::map<std::string, std::array<double, 2>> layout = world->ObjectLayout();
+  summary.layout = world->ObjectLayout();
 
   summary.readout_seed = Rng::Derive(test_seed, kReadoutStream);
   summary.readout_scenes = options.readout_scenes;
@@ -176,12 +181,13 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
       store::ProbedObject& o = probed.objects[p.object];
       o.action_change_per_10cm = p.action_change_per_10cm;
       o.feature_change_per_10cm = p.feature_change_per_10cm;
+      o.action_change = p.action_change;
       const auto score = scores.find(p.object);
       if (score != scores.end() && score->second) o.readout_r2 = score->second->r2;
     }
   }
   if (cancel != nullptr && cancel->load()) throw probe::ProbeCancelled{};
-  WriteHeatMaps(session, result, layout, summary);
+  WriteHeatMaps(session, summary);
   summary.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   store::WriteProbeSummary(session.ProbeSummaryPath(), summary);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/probe/distractor_probe.h"
+#include "engine/report/heat_map.h"
 #include "engine/store/probe_summary.h"
 #include "engine/store/session.h"
 
@@ -33,6 +34,11 @@ using SessionProbeProgress = std::function<void(const std::string& what, int don
 store::ProbeSummary ProbeSession(const store::Session& session, const SessionProbeOptions& options,
                                  const SessionProbeProgress& progress = nullptr,
                                  const std::atomic<bool>* cancel = nullptr);
+
+/// The heat map of `method` moving `object` (both in `summary`): the action change per grid
+/// cell, seen from behind the robot, on the object's colour scale shared by every method.
+report::HeatMap ProbeHeatMap(const store::ProbeSummary& summary, const std::string& method,
+                             const std::string& object);
 
 /// The summary as a table for people, one row per method and object.
 std::string ProbeSummaryText(const store::ProbeSummary& summary);

@@ -4,9 +4,12 @@
 #include <filesystem>
 #include <string>
 
+#include "app/cli/result_staleness.h"
+#include "app/cli/session_probe.h"
 #include "app/cli/session_summary.h"
 #include "engine/calib/calibration.h"
 #include "engine/store/episode_file.h"
+#include "engine/store/probe_summary.h"
 
 namespace recon::cli {
 
@@ -203,6 +206,38 @@ void AddLedger(const json& ledger, report::SessionReport& r) {
                   std::to_string(demos) + " demonstrations.";
 }
 
+void AddProbe(const store::Session& session, report::SessionReport& r) {
+  const std::optional<store::ProbeSummary> probe = store::ReadProbeSummary(session);
+  if (!probe) return;
+  report::SessionReport::Probe part;
+  std::vector<std::string> retrained;
+  for (const auto& [method, probed] : probe->methods) {
+    for (const auto& [object, o] : probed.objects) {
+      part.rows.push_back({probed.label, object, o.action_change_per_10cm,
+                           o.feature_change_per_10cm, o.readout_r2});
+      if (!o.action_change.empty()) part.maps.push_back(ProbeHeatMap(*probe, method, object));
+    }
+    if (probed.model_id && CheckpointModelId(session.CheckpointPath(method)) != *probed.model_id) {
+      retrained.push_back(probed.label);
+    }
+  }
+  for (const std::string& label : retrained) {
+    part.out_of_date += (part.out_of_date.empty() ? "" : ", ") + label;
+  }
+  if (!part.out_of_date.empty()) {
+    part.out_of_date += " retrained (or removed) since it was probed: probe again";
+  }
+  char note[256];
+  std::snprintf(
+      note, sizeof(note),
+      "Objects moved one at a time over a %d x %d grid in test scene %llu; read-out fitted "
+      "and scored on %d other test scenes (seeds from %llu, one in four held out).",
+      probe->nx, probe->ny, static_cast<unsigned long long>(probe->scene_seed),
+      probe->readout_scenes, static_cast<unsigned long long>(probe->readout_seed));
+  part.note = note;
+  r.probe = part;
+}
+
 }  // namespace
 
 report::SessionReport BuildSessionReport(const store::Session& session,
@@ -219,6 +254,7 @@ report::SessionReport BuildSessionReport(const store::Session& session,
   AddCalibration(session, r);
   AddRollouts(results, r);
   AddRealTrials(results, r);
+  AddProbe(session, r);
   AddLedger(info["teaching_time"], r);
   return r;
 }

@@ -285,6 +285,11 @@ std::string FigureFiles::Add(const LineChart& chart, const std::string& name,
   return Embed(WritePng(chart, report_dir_, name), chart.title, caption_html);
 }
 
+std::string FigureFiles::Add(const HeatMap& chart, const std::string& name,
+                             const std::string& caption_html) {
+  return Embed(WritePng(chart, report_dir_, name), chart.title, caption_html);
+}
+
 std::string FigureFiles::Embed(const std::string& path, const std::string& title,
                                const std::string& caption_html) {
   written_.push_back(path);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/report/chart.h"
+#include "engine/report/heat_map.h"
 #include "engine/report/session_report.h"
 
 namespace recon::report {
@@ -52,6 +53,7 @@ class FigureFiles {
   /// chart is malformed.
   std::string Add(const BarChart& chart, const std::string& name, const std::string& caption_html);
   std::string Add(const LineChart& chart, const std::string& name, const std::string& caption_html);
+  std::string Add(const HeatMap& chart, const std::string& name, const std::string& caption_html);
 
   /// Removes PNGs in figures/ that were not written by this object: left by an earlier report
   /// with more figures, they would otherwise pass for part of this one.

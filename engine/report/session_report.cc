@@ -349,6 +349,41 @@ Part RealTrialsPart(const SessionReport& report) {
   return part;
 }
 
+Part ProbePart(const SessionReport& report, FigureFiles& figures) {
+  Part part{"probe", "What the policies look at", "", ""};
+  if (!report.probe) {
+    part.status = "missing";
+    part.body = Missing("Not probed yet", "run " + Code("recon eval --session DIR --probe"));
+    return part;
+  }
+  const SessionReport::Probe& probe = *report.probe;
+  part.status = Count(probe.maps.size(), "heat map", "heat maps");
+  part.body = OutOfDate("The probe", probe.out_of_date) +
+              "<p>Each object was moved over a grid of table places with everything else held, "
+              "and each policy's first action and features were compared with the scene as it "
+              "was. A policy that confuses the bowl with the plate moves with the bowl. The "
+              "read-out fits each object's position from the features on other test scenes "
+              "(R<sup>2</sup> 1: the features encode it; 0: not at all).</p>\n";
+  Rows rows;
+  for (const auto& row : probe.rows) {
+    rows.push_back({Text(row.label), Text(row.object), FormatNumber(row.action_change_per_10cm),
+                    FormatNumber(row.feature_change_per_10cm),
+                    row.readout_r2 ? FormatFixed(*row.readout_r2, 2) : "&mdash;"});
+  }
+  part.body += HtmlTable({"Policy", "Object moved", "Action change per 10 cm",
+                          "Feature change per 10 cm", "Read-out R\u00b2"},
+                         rows, {2, 3, 4});
+  part.body += Note(probe.note);
+  for (const HeatMap& map : probe.maps) {
+    part.body += figures.Add(map, "probe_" + Slug(map.title),
+                             Text(map.title) +
+                                 ": how much the action changes with the object "
+                                 "placed in each cell (blank: it would overlap "
+                                 "another object); seen from behind the robot.");
+  }
+  return part;
+}
+
 Part TeachingTime(const SessionReport& report, FigureFiles& figures) {
   Part part{"teaching-time", "Teaching time", "", ""};
   if (report.ledger.empty()) {
@@ -428,6 +463,7 @@ std::vector<std::string> WriteSessionReport(const SessionReport& report,
   parts.push_back(CalibrationPart(report, figures));
   parts.push_back(Rollouts(report, figures));
   if (!report.real_trials.empty()) parts.push_back(RealTrialsPart(report));
+  parts.push_back(ProbePart(report, figures));
   parts.push_back(TeachingTime(report, figures));
   const std::string html_path = (std::filesystem::path(out_dir) / "report.html").string();
   WriteFileAtomically(html_path, Page(report, parts));

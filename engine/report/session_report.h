@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/report/heat_map.h"
+
 namespace recon::report {
 
 /// Everything the session report shows, as plain data: the caller (the CLI) reads the session,
@@ -86,6 +88,21 @@ struct SessionReport {
     std::string out_of_date;  ///< why they are not of the method's current model; "" if they are
   };
   std::vector<RealTrials> real_trials;
+
+  /// What the trained methods look at (`recon eval --probe`): each object moved over the table
+  /// with everything else held, and read out of the features.
+  struct Probe {
+    struct Row {
+      std::string label, object;
+      double action_change_per_10cm = 0, feature_change_per_10cm = 0;
+      std::optional<double> readout_r2;  ///< none where the object never moved
+    };
+    std::vector<Row> rows;
+    std::vector<HeatMap> maps;  ///< one per method and object, each object's on one scale
+    std::string note;           ///< the scene, the grid and the read-out's scenes
+    std::string out_of_date;    ///< why it is not of the methods' current models; "" if it is
+  };
+  std::optional<Probe> probe;
 
   /// Teaching time of one way of teaching the task, in seconds.
   struct LedgerRow {

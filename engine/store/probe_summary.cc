@@ -29,13 +29,17 @@ json ProbeSummaryToJson(const ProbeSummary& summary) {
       objects[object] = {{"action_change_per_10cm", o.action_change_per_10cm},
                          {"feature_change_per_10cm", o.feature_change_per_10cm},
                          {"readout_r2", OptionalNumber(o.readout_r2)},
-                         {"figure", OptionalText(o.figure)}};
+                         {"figure", OptionalText(o.figure)},
+                         {"action_change", o.action_change}};
     }
     methods[method] = objects;
     labels[method] = probed.label;
     model_ids[method] = OptionalText(probed.model_id);
   }
+  json layout = json::object();
+  for (const auto& [object, xy] : summary.layout) layout[object] = {xy[0], xy[1]};
   return {{"methods", methods},
+          {"layout", layout},
           {"labels", labels},
           {"model_ids", model_ids},
           {"scene_seed", summary.scene_seed},
@@ -68,6 +72,15 @@ ProbeSummary ProbeSummaryFromJson(const json& value, const std::string& source) 
     summary.readout_scenes = static_cast<int>(readout.OptionalInteger("scenes", 0));
     summary.readout_seed = readout.OptionalUnsigned("seed", 0);
   }
+  if (top.Has("layout")) {
+    const FieldReader layout = top.Object("layout");
+    for (const auto& [object, xy] : layout.object().items()) {
+      if (!xy.is_array() || xy.size() != 2 || !xy[0].is_number() || !xy[1].is_number()) {
+        layout.Fail(object, "expected [x, y] in metres");
+      }
+      summary.layout[object] = {xy[0].get<double>(), xy[1].get<double>()};
+    }
+  }
   const FieldReader labels = top.Has("labels") ? top.Object("labels") : top;
   const FieldReader model_ids = top.Has("model_ids") ? top.Object("model_ids") : top;
   const FieldReader methods = top.Object("methods");
@@ -84,6 +97,12 @@ ProbeSummary ProbeSummaryFromJson(const json& value, const std::string& source) 
       const double r2 = fields.OptionalNumberOrNan("readout_r2", NAN);
       if (std::isfinite(r2)) o.readout_r2 = r2;
       o.figure = fields.OptionalNullableString("figure");
+      o.action_change = fields.OptionalNumbers("action_change");
+      if (!o.action_change.empty() &&
+          o.action_change.size() != static_cast<size_t>(summary.nx) * summary.ny) {
+        fields.Fail("action_change", "expected " + std::to_string(summary.nx * summary.ny) +
+                                         " values (the grid's cells)");
+      }
       if (o.figure) {
         const std::filesystem::path p(*o.figure);
         if (p.is_absolute() || p.lexically_normal().string().rfind("..", 0) == 0) {

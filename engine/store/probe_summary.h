@@ -25,6 +25,9 @@ struct ProbedObject {
   std::optional<double> readout_r2;
   /// The heat map (action change per grid cell), relative to the session; none if not written.
   std::optional<std::string> figure;
+  /// Its values: |a(moved) - a(home)| per grid cell, row-major from y_min, NaN where the object
+  /// would have overlapped another.
+  std::vector<double> action_change;
 
   bool operator==(const ProbedObject& other) const = default;
 };
@@ -42,6 +45,8 @@ struct ProbeSummary {
   uint64_t scene_seed = 0;  ///< the scene whose objects were moved one at a time
   int nx = 0, ny = 0;       ///< the grid
   std::array<double, 4> bounds = {0, 0, 0, 0};  ///< x_min, x_max, y_min, y_max (metres)
+  /// Where the probed scene had each object (table x, y).
+  std::map<std::string, std::array<double, 2>> layout;
   int readout_scenes = 0;     ///< test scenes the read-out was fitted and scored on
   uint64_t readout_seed = 0;  ///< their seeds derive from it
   double seconds = 0;
@@ -51,7 +56,8 @@ struct ProbeSummary {
 };
 
 /// {"methods": {"<method>": {"<object>": {"action_change_per_10cm": v,
-/// "feature_change_per_10cm": v, "readout_r2": v|null, "figure": path|null}}}, "labels": ...,
+/// "feature_change_per_10cm": v, "readout_r2": v|null, "figure": path|null, "action_change":
+/// [per cell]}}}, "labels": ..., "layout": ...,
 /// "model_ids": ..., "scene_seed": ..., "grid": {...}, "readout": {...}, "seconds": ...}.
 nlohmann::json ProbeSummaryToJson(const ProbeSummary& summary);
 /// UserError naming `source` and the field for a value of the wrong kind, or a figure path

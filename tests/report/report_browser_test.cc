@@ -324,11 +324,11 @@ TEST(ReportBrowserTest, RenderedDomHasEverySectionAndLoadedFigure) {
 
   for (const char* heading :
        {"Overview", "Training losses", "Beacon traces", "Calibration residuals",
-        "Simulated rollouts: Baseline vs RECON", "Teaching time"}) {
+        "Simulated rollouts: Baseline vs RECON", "What the policies look at", "Teaching time"}) {
     EXPECT_THAT(dom, HasSubstr("<h2>" + std::string(heading) + "</h2>"));
   }
   for (const char* id :
-       {"overview", "losses", "beacons", "calibration", "rollouts", "teaching-time"}) {
+       {"overview", "losses", "beacons", "calibration", "rollouts", "probe", "teaching-time"}) {
     EXPECT_THAT(dom, HasSubstr("<section id=\"" + std::string(id) + "\">"));
   }
 

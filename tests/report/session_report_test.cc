@@ -27,13 +27,14 @@ using testing::PngImage;
 using testing::ReadFile;
 using testing::ScratchDir;
 
-const char* const kSectionIds[] = {"overview",    "losses",   "beacons",
-                                   "calibration", "rollouts", "teaching-time"};
+const char* const kSectionIds[] = {"overview", "losses", "beacons",      "calibration",
+                                   "rollouts", "probe",  "teaching-time"};
 const char* const kHeadings[] = {"Overview",
                                  "Training losses",
                                  "Beacon traces",
                                  "Calibration residuals",
                                  "Simulated rollouts: Baseline vs RECON",
+                                 "What the policies look at",
                                  "Teaching time"};
 
 SessionReport::LossHistory Run(const std::string& label, bool with_heads) {
@@ -108,6 +109,24 @@ SessionReport FullReport() {
                    {"RECON (4 demos + beacons)", 180, 45, 0, 225, 240.0},
                    {"RECON (Play)", 60, 45, 300, 405, std::nullopt}};
   report.ledger_note = "Times measured by the recorder.";
+  SessionReport::Probe probe;
+  probe.rows = {{"Baseline", "bowl", 0.0054, 0.128, 0.21},
+                {"RECON (Play)", "bowl", 0.0003, 0.012, -0.06},
+                {"RECON (Play)", "toast", 0.0004, 0.005, std::nullopt}};
+  HeatMap map;
+  map.title = "RECON (Play): the bowl moved";
+  map.nx = 3;
+  map.ny = 2;
+  map.x_min = 0.22;
+  map.x_max = 0.82;
+  map.y_min = -0.5;
+  map.y_max = 0.5;
+  map.values = {0.001, 0.002, NAN, 0.0, 0.004, 0.003};
+  map.robot_view = true;
+  map.markers = {{0.4, -0.2, "bowl (home)"}, {0.56, 0.33, "plate"}};
+  probe.maps = {map};
+  probe.note = "Objects moved one at a time over a 3 x 2 grid.";
+  report.probe = probe;
   return report;
 }
 
@@ -181,10 +200,14 @@ TEST(SessionReportTest, FiguresAreWrittenAndDecode) {
   const std::vector<std::string> written = WriteSessionReport(FullReport(), dir.File("out"));
   ASSERT_FALSE(written.empty());
   EXPECT_EQ(written.back(), dir.File("out/report.html"));
-  const std::set<std::string> expected = {
-      "losses.png",       "beacon_1_demo_1_plate.png", "beacon_2_demo_2_toast.png",
-      "calibration.png",  "rollouts_metric_1.png",     "rollouts_success.png",
-      "teaching_time.png"};
+  const std::set<std::string> expected = {"losses.png",
+                                          "beacon_1_demo_1_plate.png",
+                                          "beacon_2_demo_2_toast.png",
+                                          "calibration.png",
+                                          "rollouts_metric_1.png",
+                                          "rollouts_success.png",
+                                          "teaching_time.png",
+                                          "probe_RECON__Play___the_bowl_moved.png"};
   EXPECT_EQ(Files(dir.File("out/figures")), expected);
   EXPECT_EQ(Files(dir.File("out")), (std::set<std::string>{"figures", "report.html"}));
   ASSERT_EQ(written.size(), expected.size() + 1);
