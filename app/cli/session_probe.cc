@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <utility>
 
 #include "app/cli/result_staleness.h"
 #include "app/cli/session_training.h"
@@ -192,6 +193,42 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   store::WriteProbeSummary(session.ProbeSummaryPath(), summary);
   return summary;
+}
+
+std::string ProbeStaleness(const store::Session& session, const store::ProbeSummary& summary) {
+  std::string retrained;
+  for (const auto& [method, probed] : summary.methods) {
+    if (probed.model_id && CheckpointModelId(session.CheckpointPath(method)) != *probed.model_id) {
+      retrained += (retrained.empty() ? "" : ", ") + probed.label;
+    }
+  }
+  return retrained.empty() ? ""
+                           : retrained + " retrained (or removed) since it was probed: probe again";
+}
+
+std::vector<std::string> ProbeVerdicts(const store::ProbeSummary& summary) {
+  std::vector<std::string> verdicts;
+  for (const auto& [method, probed] : summary.methods) {
+    const std::pair<const std::string, store::ProbedObject>* most = nullptr;
+    for (const auto& entry : probed.objects) {
+      if (most == nullptr ||
+          entry.second.action_change_per_10cm > most->second.action_change_per_10cm) {
+        most = &entry;
+      }
+    }
+    if (most == nullptr) continue;
+    char line[256];
+    std::snprintf(line, sizeof(line), "%s moves most with the %s (%.3g per 10 cm",
+                  probed.label.c_str(), most->first.c_str(), most->second.action_change_per_10cm);
+    std::string verdict = line;
+    for (const auto& [object, o] : probed.objects) {
+      if (object == most->first) continue;
+      std::snprintf(line, sizeof(line), "; the %s %.3g", object.c_str(), o.action_change_per_10cm);
+      verdict += line;
+    }
+    verdicts.push_back(verdict + ")");
+  }
+  return verdicts;
 }
 
 std::string ProbeSummaryText(const store::ProbeSummary& summary) {

@@ -40,6 +40,14 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
 report::HeatMap ProbeHeatMap(const store::ProbeSummary& summary, const std::string& method,
                              const std::string& object);
 
+/// Why the probe no longer describes the session's models ("RECON (Play) retrained (or removed)
+/// since it was probed: probe again"); "" when it does.
+std::string ProbeStaleness(const store::Session& session, const store::ProbeSummary& summary);
+
+/// Per method, the object its action moves with most: "RECON (Play) moves most with the plate
+/// (0.00216 per 10 cm; the bowl 0.000318)".
+std::vector<std::string> ProbeVerdicts(const store::ProbeSummary& summary);
+
 /// The summary as a table for people, one row per method and object.
 std::string ProbeSummaryText(const store::ProbeSummary& summary);
 

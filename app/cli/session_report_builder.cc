@@ -210,23 +210,14 @@ void AddProbe(const store::Session& session, report::SessionReport& r) {
   const std::optional<store::ProbeSummary> probe = store::ReadProbeSummary(session);
   if (!probe) return;
   report::SessionReport::Probe part;
-  std::vector<std::string> retrained;
   for (const auto& [method, probed] : probe->methods) {
     for (const auto& [object, o] : probed.objects) {
       part.rows.push_back({probed.label, object, o.action_change_per_10cm,
                            o.feature_change_per_10cm, o.readout_r2});
       if (!o.action_change.empty()) part.maps.push_back(ProbeHeatMap(*probe, method, object));
     }
-    if (probed.model_id && CheckpointModelId(session.CheckpointPath(method)) != *probed.model_id) {
-      retrained.push_back(probed.label);
-    }
   }
-  for (const std::string& label : retrained) {
-    part.out_of_date += (part.out_of_date.empty() ? "" : ", ") + label;
-  }
-  if (!part.out_of_date.empty()) {
-    part.out_of_date += " retrained (or removed) since it was probed: probe again";
-  }
+  part.out_of_date = ProbeStaleness(session, *probe);
   char note[256];
   std::snprintf(
       note, sizeof(note),

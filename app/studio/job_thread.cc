@@ -15,6 +15,8 @@ const char* JobKindName(JobKind kind) {
       return "training";
     case JobKind::kRollouts:
       return "rollouts";
+    case JobKind::kProbe:
+      return "probe";
   }
   return "job";
 }

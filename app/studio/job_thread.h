@@ -14,9 +14,10 @@
 namespace recon::studio {
 
 /// The studio's long activities.
-enum class JobKind { kCalibration, kTraining, kRollouts };
+enum class JobKind { kCalibration, kTraining, kRollouts, kProbe };
 
-/// The activity as the studio's messages name it ("calibration", "training", "rollouts").
+/// The activity as the studio's messages name it ("calibration", "training", "rollouts",
+/// "probe").
 const char* JobKindName(JobKind kind);
 
 /// What the studio shows of a long activity on the job thread.
@@ -27,6 +28,9 @@ struct JobState {
   std::vector<ui::TrainingView> training;
   /// The rollouts' steps done and to do, summed over the methods rolling out.
   int rollout_steps_done = 0, rollout_steps_total = 0;
+  /// The probe's phase and its units done and to do.
+  std::string probe_phase;
+  int probe_done = 0, probe_total = 0;
   std::string error;
   std::function<void()> finish;  ///< run on the cell thread when the job is over
 };

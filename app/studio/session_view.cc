@@ -6,7 +6,9 @@
 
 #include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
+#include "app/studio/probe_view.h"
 #include "engine/calib/calibration.h"
+#include "engine/core/error.h"
 #include "engine/store/rollout_summary.h"
 #include "engine/store/training_record.h"
 #include "engine/teach/teacher_mix.h"
@@ -193,6 +195,12 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     }
     view.out_of_date = checked.out_of_date;
     s.real_trials.push_back(view);
+  }
+  try {
+    s.probe = BuildProbeView(session, inputs.probe_object);
+  } catch (const UserError& e) {
+    // A damaged probe.json is said where the probe is shown; probing again replaces it.
+    s.probe.out_of_date = std::string("cannot read the probe: ") + e.what();
   }
   return s;
 }

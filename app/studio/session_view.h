@@ -18,6 +18,7 @@ struct SessionViewInputs {
   /// The cell the studio drives (CellSource::Kind()); a session taught in another one records
   /// nothing here (WorkflowFacts::taught_elsewhere).
   std::string studio_cell = "simulated";
+  std::string probe_object;  ///< whose heat maps the probe panel shows (ShowProbeObject)
 };
 
 /// The workflow of `facts` into `s`: each step's state, which steps can open, the next one.

@@ -177,6 +177,10 @@ class StudioCell {
   void Apply(const ui::JudgeTrial& c);
   void Apply(const ui::EndTrials& c);
   void Apply(const ui::ShowTrialFrame& c);
+  // What the trained methods look at (studio_cell_probe.cc).
+  void Apply(const ui::RunProbe& c);
+  void Apply(const ui::CancelProbe& c);
+  void Apply(const ui::ShowProbeObject& c);
   /// Shows trial `number`'s layout (the test plan's scene number - 1) for the teacher to set up.
   void SetUpTrial(int number);
   /// The countdown, the return home, then one policy step per control period; the verdict once
@@ -243,6 +247,7 @@ class StudioCell {
   std::vector<std::string> errors_;
   std::string status_;
   std::string report_path_;
+  std::string probe_object_;  ///< whose heat maps the probe panel shows; "": the first probed
   bool homing_take_ = false;  ///< a person's take waits for the arm to be home
   Clock::time_point take_homing_since_, next_homing_;
   bool estop_ = false;

@@ -78,6 +78,13 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
     s.rollout_steps_done = job.rollout_steps_done;
     s.rollout_steps_total = job.rollout_steps_total;
   }
+  s.probe.running = job.running && job.kind == JobKind::kProbe;
+  s.probe.cancelling = s.probe.running && jobs_.cancel_flag()->load();
+  if (s.probe.running) {
+    s.probe.phase = job.probe_phase;
+    s.probe.done = job.probe_done;
+    s.probe.total = job.probe_total;
+  }
   s.busy_with = s.recording           ? "the recording"
                 : s.recording_play    ? "the play data recording"
                 : calibrating_        ? "the calibration"
@@ -100,6 +107,7 @@ void StudioCell::RebuildSessionView() {
   inputs.calibration_points = options_.calibration_points;
   inputs.gamepad = gamepad_.View();
   inputs.studio_cell = source_->Kind();
+  inputs.probe_object = probe_object_;
   session_view_ = BuildSessionView(*session_, inputs);
 }
 

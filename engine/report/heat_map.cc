@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "engine/core/color_scale.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/report/canvas.h"
@@ -15,17 +16,10 @@ namespace recon::report {
 
 namespace {
 
-/// A perceptually even sequential scale (viridis at five stops), t in [0, 1].
+/// The project's sequential scale (engine/core/color_scale.h), t in [0, 1].
 Color Sequential(double t) {
-  static constexpr std::array<Color, 5> kStops = {
-      Color{0.267, 0.005, 0.329}, Color{0.231, 0.322, 0.545}, Color{0.129, 0.569, 0.549},
-      Color{0.369, 0.788, 0.384}, Color{0.993, 0.906, 0.144}};
-  t = std::clamp(t, 0.0, 1.0) * (kStops.size() - 1);
-  const size_t i = std::min(static_cast<size_t>(t), kStops.size() - 2);
-  const double f = t - static_cast<double>(i);
-  const Color& a = kStops[i];
-  const Color& b = kStops[i + 1];
-  return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+  const std::array<double, 3> c = SequentialColor(t);
+  return {c[0], c[1], c[2]};
 }
 
 void Validate(const HeatMap& map) {

@@ -39,7 +39,7 @@ std::string ReadText(const fs::path& path) {
 TEST_F(StudioTwinCellTest, ASimulatedSessionRunsTrialsOnTheRealArmAndKeepsBothResultsLabelled) {
   // Taught, trained and rolled out in the simulated cell, from the command line.
   const fs::path session_dir = dir_ / "session";
-  for (const std::string args :
+  for (const std::string& args :
        {"record --session " + session_dir.string() + " --world tabletop --demos 2 --seed 70",
         "train --session " + session_dir.string() + " --method baseline --steps 20 --seed 3",
         "eval --session " + session_dir.string() + " --tests 3 --seed 11"}) {

@@ -108,7 +108,10 @@ void DrawRolloutsScreen(const ScreenContext& context) {
   // On a real cell the policies run trials on the arm; a session taught in the simulated cell
   // keeps its simulated rollouts too, on the same test scenes, labelled apart.
   if (s.studio_cell == "real") DrawTrialsPanel(context);
-  if (s.cell_kind == "real") return;  // no simulation of a real cell's scene to roll out in
+  if (s.cell_kind == "real") {  // no simulation of a real cell's scene to roll out in
+    DrawProbePanel(context);
+    return;
+  }
   if (s.studio_cell == "real") {
     ImGui::Spacing();
     ImGui::Separator();
@@ -172,6 +175,7 @@ void DrawRolloutsScreen(const ScreenContext& context) {
     }
   }
   DrawPlayback(context);
+  DrawProbePanel(context);
 }
 
 }  // namespace recon::ui

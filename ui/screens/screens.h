@@ -42,6 +42,8 @@ void DrawRolloutsScreen(const ScreenContext& context);
 void DrawReportScreen(const ScreenContext& context);
 /// The Rollouts step's trials on a real arm (a real cell's): trials_panel.cc.
 void DrawTrialsPanel(const ScreenContext& context);
+/// The Rollouts step's "Check what it looks at" panel (probe_panel.cc).
+void DrawProbePanel(const ScreenContext& context);
 /// The Session menu of the menu bar (open, recent sessions) and the session picker page.
 void DrawSessionMenu(const ScreenContext& context);
 void DrawSessionPicker(const ScreenContext& context);

@@ -56,6 +56,14 @@ struct Quit {};
 struct RunRollouts {
   int tests = 10;
 };
+/// Checks what the trained methods look at (cli::ProbeSession) as a job; CancelProbe stops it,
+/// keeping the probe from before.
+struct RunProbe {};
+struct CancelProbe {};
+/// Shows the heat maps of moving `object`.
+struct ShowProbeObject {
+  std::string object;
+};
 /// Shows frame `frame` of test scene `scenario` in the rollout playback (every method's rollout
 /// of that scene, side by side) and pauses there.
 struct ShowRolloutFrame {
@@ -146,7 +154,8 @@ using StudioCommand =
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
                  UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
-                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame>;
+                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, RunProbe, CancelProbe,
+                 ShowProbeObject>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

@@ -240,6 +240,38 @@ struct RolloutView {
   uint64_t frame_id = 0;  ///< changes whenever frame_image does
 };
 
+/// What the trained methods look at (the Rollouts step's "Check what it looks at", the same as
+/// `recon eval --probe`): each object moved over the table with everything else held.
+struct ProbeView {
+  bool running = false, cancelling = false;
+  std::string phase;  ///< "moving objects", "rendering read-out scenes"
+  int done = 0, total = 0;
+  bool present = false;  ///< the session holds a probe
+  struct Row {
+    std::string label, object;
+    double action_change_per_10cm = 0, feature_change_per_10cm = 0;
+    std::optional<double> readout_r2;  ///< none where the object never moved
+  };
+  std::vector<Row> rows;
+  /// Per method, what its action moves with most: "RECON (Play) moves most with the plate".
+  std::vector<std::string> verdicts;
+  std::string note;                  ///< the scene, the grid, the read-out's scenes
+  std::string out_of_date;           ///< why it is not of the current models; "" if it is
+  std::vector<std::string> objects;  ///< every object probed
+  std::string shown_object;          ///< whose heat maps `maps` are
+  /// The shown object's heat map per method: action change per cell (row-major from y_min, NaN
+  /// where the object would overlap another), on one colour scale (0 to scale_max).
+  struct Map {
+    std::string label;
+    int nx = 0, ny = 0;
+    std::array<float, 4> bounds = {0, 0, 0, 0};  ///< x_min, x_max, y_min, y_max (metres)
+    std::vector<float> values;
+    float scale_max = 0;
+    std::vector<std::pair<std::string, std::array<float, 2>>> markers;  ///< objects' places
+  };
+  std::vector<Map> maps;
+};
+
 /// Everything the studio's screens draw, copied from the engine side once per frame under a
 /// short lock. The UI reads only this and answers with commands (studio_commands.h): it never
 /// touches a session, a device or a trainer.
@@ -315,6 +347,7 @@ struct StudioSnapshot {
   /// A real cell's trials: the one under way, the judged ones, and one played back.
   TrialView trial;
   std::vector<RealTrialsView> real_trials;
+  ProbeView probe;
   TrialPlaybackView trial_playback;
   bool rollouts_running = false;
   bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step

@@ -1,0 +1,103 @@
+// The studio's "Check what it looks at" on a real tabletop session (made and trained with the
+// `recon` binary): the probe runs as a job with its progress, lands in the session and the
+// Rollouts step, switches the object shown, and a cancelled probe keeps the one from before.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+
+#include "app/studio/studio_controller.h"
+#include "tests/app/run_recon.h"
+#include "tests/app/studio_twin_fixture.h"
+
+namespace recon::studio {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using testing::WaitFor;
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class StudioProbeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) / ("recon_studio_probe_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    for (const std::string& args :
+         {"record --session " + Session().string() + " --world tabletop --demos 2 --seed 70",
+          "train --session " + Session().string() + " --steps 30 --seed 3"}) {
+      const recon::testing::CommandResult r = recon::testing::RunRecon(args);
+      ASSERT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Session() const { return dir_ / "session"; }
+  StudioOptions Options() const {
+    StudioOptions options;
+    options.session_dir = Session().string();
+    options.recent_sessions_file = (dir_ / "recent.json").string();
+    options.dev_dir = (dir_ / "no-dev").string();
+    return options;
+  }
+  fs::path dir_;
+};
+
+TEST_F(StudioProbeTest, RunsAsAJobAndShowsWhatEachPolicyLooksAt) {
+  auto studio = std::make_unique<StudioController>(Options());
+  StudioController& controller = *studio;
+  ui::StudioSnapshot s = WaitFor(
+      controller, [](const auto& now) { return now.session_open && !now.training.empty(); });
+  EXPECT_FALSE(s.probe.present);
+  controller.Push(ui::OpenStep{teach::Step::kRollouts});
+  controller.Push(ui::RunProbe{});
+  s = WaitFor(controller, [](const auto& now) { return now.probe.running && now.probe.total > 0; });
+  EXPECT_EQ(s.busy_with, "the probe");
+  EXPECT_LE(s.probe.done, s.probe.total);
+  s = WaitFor(
+      controller, [](const auto& now) { return !now.probe.running && now.probe.present; }, 120);
+  ASSERT_TRUE(s.errors.empty()) << s.errors.back();
+  EXPECT_THAT(s.status, HasSubstr("Checked what the policies look at"));
+  EXPECT_EQ(s.probe.rows.size(), 6u);  // two methods, three objects
+  ASSERT_EQ(s.probe.verdicts.size(), 2u);
+  EXPECT_THAT(s.probe.verdicts[0], HasSubstr("moves most with the"));
+  EXPECT_EQ(s.probe.objects, (std::vector<std::string>{"bowl", "plate", "toast"}));
+  EXPECT_EQ(s.probe.shown_object, "bowl");
+  ASSERT_EQ(s.probe.maps.size(), 2u);
+  EXPECT_EQ(s.probe.maps[0].values.size(), 100u);
+  EXPECT_TRUE(fs::exists(Session() / "probe" / "probe.json"));
+  EXPECT_TRUE(s.probe.out_of_date.empty());
+
+  controller.Push(ui::ShowProbeObject{"plate"});
+  s = WaitFor(controller, [](const auto& now) { return now.probe.shown_object == "plate"; });
+  EXPECT_EQ(s.probe.maps.size(), 2u);
+
+  // A cancelled probe writes nothing: the session keeps the one from before.
+  const std::string before = ReadText(Session() / "probe" / "probe.json");
+  controller.Push(ui::RunProbe{});
+  controller.Push(ui::CancelProbe{});
+  s = WaitFor(controller, [](const auto& now) {
+    return !now.probe.running && now.status.find("cancelled") != std::string::npos;
+  });
+  EXPECT_EQ(ReadText(Session() / "probe" / "probe.json"), before);
+
+  // Retraining a method (the studio closed: it holds the session) makes the probe out of date.
+  studio.reset();
+  const recon::testing::CommandResult r = recon::testing::RunRecon(
+      "train --session " + Session().string() + " --methods recon --steps 20 --seed 4");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  StudioController reopened(Options());
+  s = WaitFor(reopened, [](const auto& now) { return now.probe.present; });
+  EXPECT_THAT(s.probe.out_of_date, HasSubstr("RECON retrained"));
+}
+
+}  // namespace
+}  // namespace recon::studio

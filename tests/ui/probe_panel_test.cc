@@ -1,0 +1,121 @@
+// The Rollouts step's "Check what it looks at" panel, headless: the button and why it is
+// disabled, the progress and its cancel, and the results (verdicts, the table, a heat map per
+// method of the object chosen), each state a golden and each control the command it sends.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <variant>
+
+#include "engine/core/error.h"
+#include "tests/support/golden_image.h"
+#include "tests/ui/studio_harness.h"
+#include "tests/ui/studio_test_support.h"
+
+namespace recon::ui {
+namespace {
+
+using testing::Progress;
+using testing::SnapshotAt;
+
+template <typename Command>
+std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
+  std::optional<Command> last;
+  for (const StudioCommand& c : commands) {
+    if (const auto* command = std::get_if<Command>(&c)) last = *command;
+  }
+  return last;
+}
+
+/// A 10 x 10 heat map that grows away from (x, y) = (0.4, -0.2), blank around (0.56, 0.33).
+ProbeView::Map Map(const std::string& label, float gain) {
+  ProbeView::Map map;
+  map.label = label;
+  map.nx = map.ny = 10;
+  map.bounds = {0.22f, 0.82f, -0.5f, 0.5f};
+  for (int iy = 0; iy < 10; ++iy) {
+    for (int ix = 0; ix < 10; ++ix) {
+      const float x = 0.22f + (ix + 0.5f) * 0.06f, y = -0.5f + (iy + 0.5f) * 0.1f;
+      const bool overlaps = std::hypot(x - 0.56f, y - 0.33f) < 0.16f;
+      map.values.push_back(overlaps ? NAN : gain * std::hypot(x - 0.4f, y + 0.2f));
+    }
+  }
+  map.scale_max = 0.02f;
+  map.markers = {
+      {"bowl (home)", {0.4f, -0.2f}}, {"plate", {0.56f, 0.33f}}, {"toast", {0.33f, 0.0f}}};
+  return map;
+}
+
+StudioSnapshot Probed() {
+  StudioSnapshot s = SnapshotAt(Progress::kDone, teach::Step::kRollouts);
+  for (RolloutView& r : s.rollouts) r.has_replay = false;  // the panel in view, not the playback
+  ProbeView& p = s.probe;
+  p.present = true;
+  p.rows = {{"Baseline", "bowl", 0.00545, 0.128, 0.21},
+            {"Baseline", "plate", 0.00397, 0.0718, 0.13},
+            {"Baseline", "toast", 0.00203, 0.032, std::nullopt},
+            {"RECON (Play)", "bowl", 0.000318, 0.0117, -0.07},
+            {"RECON (Play)", "plate", 0.00216, 0.0987, 1.00},
+            {"RECON (Play)", "toast", 0.000363, 0.00517, std::nullopt}};
+  p.verdicts = {
+      "Baseline moves most with the bowl (0.00545 per 10 cm; the plate 0.00397; the "
+      "toast 0.00203)",
+      "RECON (Play) moves most with the plate (0.00216 per 10 cm; the bowl 0.000318; "
+      "the toast 0.000363)"};
+  p.note =
+      "Each object moved over a 10 x 10 grid in test scene 1038; read-out on 60 other test "
+      "scenes.";
+  p.objects = {"bowl", "plate", "toast"};
+  p.shown_object = "bowl";
+  p.maps = {Map("Baseline", 0.04f), Map("RECON (Play)", 0.003f)};
+  return s;
+}
+
+TEST(ProbePanelTest, ShowsWhatEachPolicyMovesWithAndSwitchesTheObjectShown) {
+  StudioHarness harness;
+  StudioSnapshot s = Probed();
+  harness.Show(s);
+  EXPECT_TRUE(
+      ::recon::testing::MatchesGolden(harness.driver().Screenshot(), GoldenPath("rollouts_probe")));
+  EXPECT_TRUE(harness.driver().Drawn("heat-map##0"));
+  EXPECT_TRUE(harness.driver().Drawn("heat-map##1"));
+  harness.Commands();
+  EXPECT_THROW(harness.driver().Click("bowl##probe-object"), UserError);  // shown already
+  harness.driver().Click("plate##probe-object");
+  const std::optional<ShowProbeObject> shown = Last<ShowProbeObject>(harness.Commands());
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_EQ(shown->object, "plate");
+  harness.driver().Click("Check what it looks at");
+  EXPECT_TRUE(Last<RunProbe>(harness.Commands()).has_value());
+}
+
+TEST(ProbePanelTest, RunsWithAProgressBarAndACancelAndSaysWhyItCannotRun) {
+  StudioHarness harness;
+  StudioSnapshot s = Probed();
+  s.probe.running = true;
+  s.probe.phase = "moving objects";
+  s.probe.done = 120;
+  s.probe.total = 300;
+  s.busy_with = "the probe";
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("rollouts_probe_running")));
+  harness.Commands();
+  harness.driver().Click("Cancel the check");
+  EXPECT_TRUE(Last<CancelProbe>(harness.Commands()).has_value());
+
+  // Nothing trained: the button is there, disabled.
+  s = SnapshotAt(Progress::kRecorded, teach::Step::kRollouts);
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);
+  // A real cell's session cannot be probed: its scene has no simulation.
+  s = Probed();
+  s.cell_kind = "real";
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);
+}
+
+}  // namespace
+}  // namespace recon::ui

@@ -1,0 +1,106 @@
+// The Rollouts step's "Check what it looks at": what each trained method's action moves with, a
+// heat map per method of the object shown, and how well the features encode each object.
+
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "ui/screens/screens.h"
+#include "ui/widgets/heat_map_view.h"
+#include "ui/widgets/widgets.h"
+
+namespace recon::ui {
+
+namespace {
+
+void DrawProbeResults(const ScreenContext& context) {
+  const ProbeView& p = context.snapshot.probe;
+  if (!p.out_of_date.empty()) StatusText(Status::kWarning, "Out of date: " + p.out_of_date + ".");
+  for (const std::string& verdict : p.verdicts) ImGui::BulletText("%s", verdict.c_str());
+  if (ImGui::BeginTable("probe", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("Policy");
+    ImGui::TableSetupColumn("Object moved");
+    ImGui::TableSetupColumn("Action change / 10 cm");
+    ImGui::TableSetupColumn("Feature change / 10 cm");
+    ImGui::TableSetupColumn("Read-out R2");
+    ImGui::TableHeadersRow();
+    for (const ProbeView::Row& row : p.rows) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(row.label.c_str());
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(row.object.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%.3g", row.action_change_per_10cm);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.3g", row.feature_change_per_10cm);
+      ImGui::TableNextColumn();
+      if (row.readout_r2) {
+        ImGui::Text("%.2f", *row.readout_r2);
+      } else {
+        ImGui::TextDisabled("- (never moves)");
+      }
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TextDisabled("%s", p.note.c_str());
+  if (p.objects.empty()) return;
+  ImGui::TextUnformatted("Heat maps, moving:");
+  for (const std::string& object : p.objects) {
+    ImGui::SameLine();
+    if (Button((object + "##probe-object").c_str(), object != p.shown_object, "shown below")) {
+      context.commands.Push(ShowProbeObject{object});
+    }
+  }
+  const float width = std::clamp((ImGui::GetContentRegionAvail().x - Px(16)) / 2, Px(160), Px(420));
+  for (size_t i = 0; i < p.maps.size(); ++i) {
+    if (i > 0) ImGui::SameLine(0, Px(16));
+    ImGui::BeginGroup();
+    ImGui::Text("%s: the %s moved", p.maps[i].label.c_str(), p.shown_object.c_str());
+    HeatMapView(Format("heat-map##%zu", i).c_str(), p.maps[i], width);
+    ImGui::EndGroup();
+  }
+  ImGui::TextDisabled(
+      "Brighter: the action changes more with the %s there (same scale for "
+      "every policy); seen from behind the robot.",
+      p.shown_object.c_str());
+}
+
+}  // namespace
+
+void DrawProbePanel(const ScreenContext& context) {
+  const StudioSnapshot& s = context.snapshot;
+  const ProbeView& p = s.probe;
+  ImGui::Spacing();
+  ImGui::Separator();
+  ImGui::TextUnformatted("What the policies look at");
+  if (p.running) {
+    if (Button(p.cancelling ? "Cancelling...##cancel-probe" : "Cancel the check", !p.cancelling)) {
+      context.commands.Push(CancelProbe{});
+    }
+    ImGui::SameLine();
+    const float fraction = p.total > 0 ? static_cast<float>(p.done) / p.total : 0.0f;
+    ImGui::ProgressBar(fraction, ImVec2(-1, 0),
+                       p.total > 0 ? Format("%s: %d / %d", p.phase.c_str(), p.done, p.total).c_str()
+                                   : "starting...");
+  } else {
+    const bool trained = std::any_of(s.training.begin(), s.training.end(),
+                                     [](const TrainingView& t) { return t.done; });
+    const bool simulated = s.cell_kind == "simulated";
+    const char* why = !simulated ? "the check moves objects in the simulated cell, and this "
+                                   "session was taught on a real one"
+                      : !trained ? "train a policy first"
+                      : !s.busy_with.empty() ? "wait for what runs now"
+                                             : "";
+    if (Button("Check what it looks at", simulated && trained && s.busy_with.empty(), why)) {
+      context.commands.Push(RunProbe{});
+    }
+    ImGui::SameLine();
+    ImGui::TextWrapped(
+        "moves each object over the table, everything else held, and measures "
+        "how much each policy's action follows it (a few seconds)");
+  }
+  if (p.present) DrawProbeResults(context);
+}
+
+}  // namespace recon::ui
