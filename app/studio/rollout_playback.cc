@@ -5,6 +5,8 @@
 
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
+#include "engine/learn/learner.h"
+#include "engine/probe/saliency.h"
 #include "engine/store/session.h"
 #include "engine/teach/workflow.h"
 #include "engine/worlds/tabletop.h"
@@ -26,8 +28,9 @@ void RolloutPlayback::Reload() {
     const fs::path path =
         fs::path(session_dir_) / store::Session::RolloutReplayRelativePath(method);
     if (!fs::exists(path)) continue;
-    methods_.emplace(method,
-                     Method{store::RolloutReplayFile::Open(path.string()), {}, {}, -1, -1, 0});
+    methods_.emplace(
+        method,
+        Method{store::RolloutReplayFile::Open(path.string()), std::nullopt, {}, {}, -1, -1, 0});
   }
   Show(scenario_, frame_);
   playing_ = false;
@@ -77,6 +80,32 @@ int RolloutPlayback::Frames() {
   return frames;
 }
 
+void RolloutPlayback::SetSaliency(ui::SaliencyMode mode) {
+  saliency_ = mode;
+  for (auto& [name, method] : methods_) method.image_frame = -1;  // drawn again
+}
+
+RgbImage RolloutPlayback::Draw(const std::string& name, Method& method,
+                               worlds::SceneRenderer& renderer, int width, int height) {
+  // The test scenes have no beacons: draw them in a world without any.
+  if (!world_) world_ = cli::MakeSessionWorld(manifest_, "none");
+  auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
+  if (tabletop == nullptr) throw UserError("rollout playback needs the arm cell");
+  tabletop->ShowReplayState(method.scenario->states[static_cast<size_t>(method.image_frame)]);
+  RgbImage image = renderer.Render(tabletop->scene(), "top", width, height);
+  if (saliency_ == ui::SaliencyMode::kOff) return image;
+  if (!method.policy) {
+    method.policy = learn::LoadPolicy(
+        (fs::path(session_dir_) / store::Session::CheckpointRelativePath(name)).string());
+  }
+  // What the policy saw at this step: the world's own camera image of the same pose.
+  const worlds::Observation seen = tabletop->Observe();
+  const probe::SaliencyMap map = saliency_ == ui::SaliencyMode::kGradient
+                                     ? probe::GradientSaliency(*method.policy, seen.x, seen.y)
+                                     : probe::OcclusionSaliency(*method.policy, seen.x, seen.y);
+  return probe::OverlaySaliency(image, map);
+}
+
 void RolloutPlayback::Fill(std::vector<ui::RolloutView>& views, worlds::SceneRenderer& renderer,
                            int width, int height) {
   for (ui::RolloutView& view : views) {
@@ -86,13 +115,8 @@ void RolloutPlayback::Fill(std::vector<ui::RolloutView>& views, worlds::SceneRen
     const store::ScenarioReplay& scenario = Scenario(method);
     const int frame = std::min(frame_, static_cast<int>(scenario.states.size()) - 1);
     if (method.image_frame != frame) {
-      // The test scenes have no beacons: draw them in a world without any.
-      if (!world_) world_ = cli::MakeSessionWorld(manifest_, "none");
-      auto* tabletop = dynamic_cast<worlds::Tabletop*>(world_.get());
-      if (tabletop == nullptr) throw UserError("rollout playback needs the arm cell");
-      tabletop->ShowReplayState(scenario.states[frame]);
-      method.image = renderer.Render(tabletop->scene(), "top", width, height);
       method.image_frame = frame;
+      method.image = Draw(it->first, method, renderer, width, height);
       ++method.image_id;
     }
     view.has_replay = true;

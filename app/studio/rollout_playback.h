@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/learn/policy.h"
 #include "engine/store/manifest.h"
 #include "engine/store/rollout_replay.h"
 #include "engine/worlds/scene_renderer.h"
@@ -32,6 +33,9 @@ class RolloutPlayback {
   /// Advances a playing playback by one step per control period; stops at the last step.
   void Tick(std::chrono::steady_clock::time_point now);
   bool playing() const { return playing_; }
+  /// Lays which pixels drive each method's action over its frames (its model now, on the frames
+  /// of its rollouts); redraws the frames shown.
+  void SetSaliency(ui::SaliencyMode mode);
 
   /// Fills each view whose method has a replay with the scene, the step and its picture
   /// (rendered only when the step shown changed).
@@ -41,6 +45,7 @@ class RolloutPlayback {
  private:
   struct Method {
     store::RolloutReplayFile file;
+    std::optional<learn::Policy> policy;            ///< loaded for the saliency, on first use
     std::optional<store::ScenarioReplay> scenario;  ///< the scene being shown, read on demand
     RgbImage image;
     int image_scenario = -1, image_frame = -1;
@@ -54,6 +59,11 @@ class RolloutPlayback {
   std::string session_dir_;
   std::map<std::string, Method> methods_;
   std::unique_ptr<worlds::World> world_;  ///< drawn into, never stepped
+  /// The frame drawn, with the saliency of `method`'s model over it when it is on.
+  RgbImage Draw(const std::string& name, Method& method, worlds::SceneRenderer& renderer, int width,
+                int height);
+
+  ui::SaliencyMode saliency_ = ui::SaliencyMode::kOff;
   int scenario_ = 0, frame_ = 0;
   bool playing_ = false;
   std::chrono::steady_clock::time_point next_step_;

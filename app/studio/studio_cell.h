@@ -181,6 +181,9 @@ class StudioCell {
   void Apply(const ui::RunProbe& c);
   void Apply(const ui::CancelProbe& c);
   void Apply(const ui::ShowProbeObject& c);
+  void Apply(const ui::SetSaliency& c);
+  /// The trial frame played back, with the saliency of its method's model over it when on.
+  void DrawTrialFrame();
   /// Shows trial `number`'s layout (the test plan's scene number - 1) for the teacher to set up.
   void SetUpTrial(int number);
   /// The countdown, the return home, then one policy step per control period; the verdict once
@@ -248,6 +251,10 @@ class StudioCell {
   std::string status_;
   std::string report_path_;
   std::string probe_object_;  ///< whose heat maps the probe panel shows; "": the first probed
+  ui::SaliencyMode saliency_ = ui::SaliencyMode::kOff;
+  /// The trial playback's model, for its saliency: loaded once per method shown.
+  std::optional<learn::Policy> trial_policy_;
+  std::string trial_policy_method_;
   bool homing_take_ = false;  ///< a person's take waits for the arm to be home
   Clock::time_point take_homing_since_, next_homing_;
   bool estop_ = false;

@@ -344,11 +344,7 @@ void StudioCell::Apply(const ui::ShowTrialFrame& c) {
   }
   trial_playback_.frames = static_cast<int>(trial_frames_.y.size());
   trial_playback_.frame = std::clamp(c.frame, 0, std::max(0, trial_playback_.frames - 1));
-  if (trial_playback_.frames > 0) {
-    trial_playback_.image = ImageFromObservation(
-        trial_frames_.y[static_cast<size_t>(trial_playback_.frame)], trial_frames_.image_size);
-    ++trial_playback_.image_frame;
-  }
+  if (trial_playback_.frames > 0) DrawTrialFrame();
 }
 
 }  // namespace recon::studio

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "engine/core/color_scale.h"
 #include "engine/core/error.h"
 
 namespace recon::probe {
@@ -79,10 +80,10 @@ SaliencyMap OcclusionSaliency(const ActBatchFunction& act, int size, const std::
     mean[c] = static_cast<float>(sum / plane);
   }
   // Every patch position, the last ones flush with the far edges so the whole image is covered.
-  const auto starts = [&](int size) {
+  const auto starts = [&](int extent) {
     std::vector<int> at;
-    for (int s = 0; s + patch <= size; s += stride) at.push_back(s);
-    if (at.back() + patch < size) at.push_back(size - patch);
+    for (int s = 0; s + patch <= extent; s += stride) at.push_back(s);
+    if (at.back() + patch < extent) at.push_back(extent - patch);
     return at;
   };
   const std::vector<int> rows = starts(map.height), columns = starts(map.width);
@@ -131,6 +132,28 @@ SaliencyMap OcclusionSaliency(const ActBatchFunction& act, int size, const std::
   }
   FindMax(map);
   return map;
+}
+
+RgbImage OverlaySaliency(const RgbImage& view, const SaliencyMap& map) {
+  RgbImage out = view;
+  if (map.max <= 0 || map.width <= 0 || map.height <= 0 || view.height <= 0) return out;
+  const int side = std::min(view.width, view.height);
+  const int left = (view.width - side) / 2, top = (view.height - side) / 2;
+  constexpr double kMostOpaque = 0.7;  // the frame still shows through the most salient pixel
+  for (int r = 0; r < side; ++r) {
+    const int map_row = std::min(map.height - 1, r * map.height / side);
+    for (int c = 0; c < side; ++c) {
+      const int map_column = std::min(map.width - 1, c * map.width / side);
+      const double t = map.value[static_cast<size_t>(map_row) * map.width + map_column] / map.max;
+      const std::array<double, 3> colour = SequentialColor(t);
+      const double alpha = kMostOpaque * std::clamp(t, 0.0, 1.0);
+      uint8_t* px = out.rgb.data() + (static_cast<size_t>(top + r) * out.width + left + c) * 3;
+      for (int k = 0; k < 3; ++k) {
+        px[k] = static_cast<uint8_t>(std::lround((1 - alpha) * px[k] + alpha * 255 * colour[k]));
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace recon::probe

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "engine/core/image.h"
 #include "engine/learn/policy.h"
 
 namespace recon::probe {
@@ -35,5 +36,11 @@ SaliencyMap OcclusionSaliency(const ActBatchFunction& act, int size, const std::
 /// The policy's (UserError for one without a camera image).
 SaliencyMap OcclusionSaliency(const learn::Policy& policy, const std::vector<float>& x,
                               const std::vector<float>& y, int patch = 8, int stride = 4);
+
+/// `view` with `map` laid over it, a pixel's colour mixed with the project's sequential colour of
+/// its saliency (0 to map.max) in proportion to it, so unsalient pixels keep their own. `view`
+/// comes from the camera the policy saw through, at any size: the policy's square image is its
+/// centred square (the same vertical field of view), where the map is drawn, nearest cell.
+RgbImage OverlaySaliency(const RgbImage& view, const SaliencyMap& map);
 
 }  // namespace recon::probe

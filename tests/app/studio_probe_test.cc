@@ -1,6 +1,7 @@
 // The studio's "Check what it looks at" on a real tabletop session (made and trained with the
 // `recon` binary): the probe runs as a job with its progress, lands in the session and the
-// Rollouts step, switches the object shown, and a cancelled probe keeps the one from before.
+// Rollouts step, switches the object shown, and a cancelled probe keeps the one from before; the
+// saliency is laid over the rollout playback and taken off again.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -34,7 +35,8 @@ class StudioProbeTest : public ::testing::Test {
     fs::remove_all(dir_);
     for (const std::string& args :
          {"record --session " + Session().string() + " --world tabletop --demos 2 --seed 70",
-          "train --session " + Session().string() + " --steps 30 --seed 3"}) {
+          "train --session " + Session().string() + " --steps 30 --seed 3",
+          "eval --session " + Session().string() + " --tests 1 --seed 11"}) {
       const recon::testing::CommandResult r = recon::testing::RunRecon(args);
       ASSERT_EQ(r.exit_code, 0) << args << "\n" << r.output;
     }
@@ -50,6 +52,30 @@ class StudioProbeTest : public ::testing::Test {
   }
   fs::path dir_;
 };
+
+TEST_F(StudioProbeTest, TheSaliencyIsLaidOverThePlaybackAndTakenOffAgain) {
+  StudioController controller(Options());
+  controller.Push(ui::OpenStep{teach::Step::kRollouts});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) {
+    return now.rollouts.size() == 2 && now.rollouts[0].has_replay &&
+           !now.rollouts[0].frame_image.rgb.empty();
+  });
+  controller.Push(ui::ShowRolloutFrame{0, 5});
+  s = WaitFor(controller, [](const auto& now) { return now.rollouts[0].frame == 5; });
+  const RgbImage plain = s.rollouts[0].frame_image;
+  for (const ui::SaliencyMode mode : {ui::SaliencyMode::kGradient, ui::SaliencyMode::kOcclusion}) {
+    controller.Push(ui::SetSaliency{mode});
+    s = WaitFor(controller, [&](const auto& now) {
+      return now.saliency == mode && now.rollouts[0].frame_image.rgb != plain.rgb;
+    });
+    EXPECT_EQ(s.rollouts[0].frame_image.width, plain.width);
+  }
+  controller.Push(ui::SetSaliency{ui::SaliencyMode::kOff});
+  s = WaitFor(controller, [&](const auto& now) {
+    return now.saliency == ui::SaliencyMode::kOff && now.rollouts[0].frame_image.rgb == plain.rgb;
+  });
+  EXPECT_TRUE(s.errors.empty());
+}
 
 TEST_F(StudioProbeTest, RunsAsAJobAndShowsWhatEachPolicyLooksAt) {
   auto studio = std::make_unique<StudioController>(Options());

@@ -189,6 +189,15 @@ TEST_F(StudioTwinCellTest, RunsTrialsOnTheRealArmJudgedByThePersonKeepingEveryJu
   s = WaitFor(controller, [](const auto& now) { return now.trial_playback.frame == 2; });
   EXPECT_EQ(s.trial_playback.frames, trial_one_steps);
   EXPECT_EQ(s.trial_playback.image.width, 64);
+  // What drives the action, laid over the frames the real arm's camera recorded.
+  const RgbImage recorded = s.trial_playback.image;
+  controller.Push(ui::SetSaliency{ui::SaliencyMode::kGradient});
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.trial_playback.image.rgb != recorded.rgb; });
+  EXPECT_EQ(s.trial_playback.frame, 2);
+  controller.Push(ui::SetSaliency{ui::SaliencyMode::kOff});
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.trial_playback.image.rgb == recorded.rgb; });
 
   // The report has them, and a third trial whose arm goes away is not kept.
   controller.Push(ui::WriteReport{});

@@ -53,7 +53,9 @@ TEST(SaliencyTest, OcclusionFindsThePixelsAPolicyReadsAndNothingElse) {
       const float v = map.value[static_cast<size_t>(r) * kSize + c];
       // A patch covering a pixel also covers (at most) 3 pixels either way of it.
       const bool near = r >= 4 - 3 && r <= 5 + 3 && c >= 12 - 3 && c <= 13 + 3;
-      if (!near) EXPECT_EQ(v, 0.0f) << r << ", " << c;
+      if (!near) {
+        EXPECT_EQ(v, 0.0f) << r << ", " << c;
+      }
     }
   }
   EXPECT_EQ(map.value[4 * kSize + 12], map.max);  // the pixel read is among the most salient
@@ -93,6 +95,30 @@ TEST(SaliencyTest, TheGradientMapIsTheJacobiansNormPerPixel) {
   const SaliencyMap occluded = OcclusionSaliency(policy, x, y, 8, 4);
   EXPECT_EQ(occluded.value.size(), 32u * 32u);
   EXPECT_GT(occluded.max, 0.0f);
+}
+
+TEST(SaliencyTest, TheOverlayColoursTheCentredSquareByValueAndLeavesTheRestAlone) {
+  RgbImage view{8, 4, std::vector<uint8_t>(8 * 4 * 3, 100)};
+  SaliencyMap map;
+  map.width = map.height = 2;
+  map.value = {0.0f, 1.0f, 0.0f, 0.0f};  // the top right quarter of the policy's image
+  map.max = 1.0f;
+  const RgbImage out = OverlaySaliency(view, map);
+  ASSERT_EQ(out.rgb.size(), view.rgb.size());
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 8; ++c) {
+      const bool salient = r < 2 && c >= 4 && c < 6;  // the centred 4 x 4 square, its top right
+      const uint8_t* px = out.Pixel(r, c);
+      if (salient) {
+        EXPECT_NE(px[0], 100) << r << ", " << c;
+      } else {
+        EXPECT_EQ(px[0], 100) << r << ", " << c;
+        EXPECT_EQ(px[2], 100) << r << ", " << c;
+      }
+    }
+  }
+  map.max = 0.0f;  // nothing salient: the view unchanged
+  EXPECT_EQ(OverlaySaliency(view, map).rgb, view.rgb);
 }
 
 }  // namespace

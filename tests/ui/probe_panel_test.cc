@@ -91,6 +91,24 @@ TEST(ProbePanelTest, ShowsWhatEachPolicyMovesWithAndSwitchesTheObjectShown) {
   EXPECT_TRUE(Last<RunProbe>(harness.Commands()).has_value());
 }
 
+TEST(ProbePanelTest, TheSaliencyToggleOverThePlaybackSendsTheModeChosen) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kDone, teach::Step::kRollouts);  // with the playback
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Off##saliency"), UserError);  // off already
+  harness.Commands();
+  harness.driver().Click("Gradient##saliency");
+  std::optional<SetSaliency> set = Last<SetSaliency>(harness.Commands());
+  ASSERT_TRUE(set.has_value());
+  EXPECT_EQ(set->mode, SaliencyMode::kGradient);
+  s.saliency = SaliencyMode::kOcclusion;
+  harness.Show(s);
+  harness.driver().Click("Off##saliency");
+  set = Last<SetSaliency>(harness.Commands());
+  ASSERT_TRUE(set.has_value());
+  EXPECT_EQ(set->mode, SaliencyMode::kOff);
+}
+
 TEST(ProbePanelTest, RunsWithAProgressBarAndACancelAndSaysWhyItCannotRun) {
   StudioHarness harness;
   StudioSnapshot s = Probed();

@@ -68,6 +68,29 @@ void DrawProbeResults(const ScreenContext& context) {
 
 }  // namespace
 
+void DrawSaliencyToggle(const ScreenContext& context) {
+  const SaliencyMode shown = context.snapshot.saliency;
+  ImGui::TextUnformatted("What drives the action:");
+  const struct {
+    const char* label;
+    SaliencyMode mode;
+  } choices[] = {{"Off##saliency", SaliencyMode::kOff},
+                 {"Gradient##saliency", SaliencyMode::kGradient},
+                 {"Occlusion##saliency", SaliencyMode::kOcclusion}};
+  for (const auto& choice : choices) {
+    ImGui::SameLine();
+    if (Button(choice.label, choice.mode != shown, "shown now")) {
+      context.commands.Push(SetSaliency{choice.mode});
+    }
+  }
+  if (shown != SaliencyMode::kOff) {
+    ImGui::SameLine();
+    ImGui::TextDisabled(shown == SaliencyMode::kGradient
+                            ? "brighter: a pixel's change moves the action more"
+                            : "brighter: hiding that part of the view moves the action more");
+  }
+}
+
 void DrawProbePanel(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   const ProbeView& p = s.probe;

@@ -64,6 +64,7 @@ void DrawPlayback(const ScreenContext& context) {
   }
   ImGui::SameLine();
   ImGui::Text("step %d, %.1f s", frame, 0.1 * frame);
+  DrawSaliencyToggle(context);
 
   ImageTexture* textures[2] = {&context.textures.rollout, &context.textures.rollout_other};
   // Two frames side by side that fit the screen from 1024 x 640 up: at most 480 px wide, and as

@@ -44,6 +44,8 @@ void DrawReportScreen(const ScreenContext& context);
 void DrawTrialsPanel(const ScreenContext& context);
 /// The Rollouts step's "Check what it looks at" panel (probe_panel.cc).
 void DrawProbePanel(const ScreenContext& context);
+/// Off / Gradient / Occlusion: the saliency over the frames played back (probe_panel.cc).
+void DrawSaliencyToggle(const ScreenContext& context);
 /// The Session menu of the menu bar (open, recent sessions) and the session picker page.
 void DrawSessionMenu(const ScreenContext& context);
 void DrawSessionPicker(const ScreenContext& context);

@@ -116,6 +116,7 @@ void DrawJudgedTrials(const ScreenContext& context) {
   ImGui::Separator();
   ImGui::Text("Trial %d of %s, what the policy saw: step %d of %d", p.number, p.method.c_str(),
               p.frame + 1, p.frames);
+  DrawSaliencyToggle(context);
   context.textures.rollout.Update(p.image, p.image_frame);
   ImGui::Image(context.textures.rollout.id(), ImVec2(Px(192), Px(192)));
   int frame = p.frame;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "engine/teach/workflow.h"
+#include "ui/studio/saliency_mode.h"
 #include "ui/studio/teleop_mode.h"
 
 namespace recon::ui {
@@ -60,6 +61,10 @@ struct RunRollouts {
 /// keeping the probe from before.
 struct RunProbe {};
 struct CancelProbe {};
+/// Lays which pixels drive the action over the played-back frames (or stops).
+struct SetSaliency {
+  SaliencyMode mode = SaliencyMode::kOff;
+};
 /// Shows the heat maps of moving `object`.
 struct ShowProbeObject {
   std::string object;
@@ -155,7 +160,7 @@ using StudioCommand =
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
                  UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
                  StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, RunProbe, CancelProbe,
-                 ShowProbeObject>;
+                 ShowProbeObject, SetSaliency>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

@@ -8,6 +8,7 @@
 
 #include "engine/core/image.h"
 #include "engine/teach/workflow.h"
+#include "ui/studio/saliency_mode.h"
 #include "ui/studio/studio_commands.h"
 #include "ui/studio/teleop_mode.h"
 
@@ -348,6 +349,7 @@ struct StudioSnapshot {
   TrialView trial;
   std::vector<RealTrialsView> real_trials;
   ProbeView probe;
+  SaliencyMode saliency = SaliencyMode::kOff;  ///< over the rollout and trial playbacks
   TrialPlaybackView trial_playback;
   bool rollouts_running = false;
   bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step
