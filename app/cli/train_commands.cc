@@ -13,6 +13,7 @@
 
 #include "app/cli/option_checks.h"
 #include "app/cli/session_probe.h"
+#include "app/cli/session_saliency.h"
 #include "app/cli/session_training.h"
 #include "app/cli/session_world.h"
 #include "engine/core/error.h"
@@ -140,7 +141,28 @@ struct EvalFlags {
   int grid = 10;
   int readout_scenes = 60;
   bool json = false;
+  // --saliency demo_N: which pixels drive the actions over a recorded demonstration.
+  std::string saliency;
+  bool occlusion = false;
+  int frames = 8;
 };
+
+void RunSaliency(const EvalFlags& flags) {
+  const store::Session session = store::Session::Open(flags.session);
+  SaliencySheetOptions options;
+  options.episode = flags.saliency;
+  options.methods = flags.methods;
+  options.occlusion = flags.occlusion;
+  options.frames = flags.frames;
+  const SaliencySheet sheet = WriteSaliencySheet(session, options);
+  std::string steps;
+  for (int step : sheet.steps) steps += (steps.empty() ? "" : ", ") + std::to_string(step);
+  std::string rows;
+  for (const std::string& row : sheet.rows) rows += (rows.empty() ? "" : "; ") + row;
+  std::printf("wrote %s: %s saliency over %s, rows: %s; columns: steps %s\n", sheet.path.c_str(),
+              flags.occlusion ? "occlusion" : "input-gradient", flags.saliency.c_str(),
+              rows.c_str(), steps.c_str());
+}
 
 void RunProbe(const EvalFlags& flags) {
   const store::Session session = store::Session::Open(flags.session);
@@ -174,6 +196,10 @@ void RunProbe(const EvalFlags& flags) {
 void RunEval(const EvalFlags& flags) {
   if (flags.probe) {
     RunProbe(flags);
+    return;
+  }
+  if (!flags.saliency.empty()) {
+    RunSaliency(flags);
     return;
   }
   const store::Session session = store::Session::Open(flags.session);
@@ -297,6 +323,18 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->needs(probe);
   eval->add_flag("--json", eval_flags->json, "with --probe: print the numbers as one JSON object")
       ->needs(probe);
+  CLI::Option* saliency = eval->add_option(
+      "--saliency", eval_flags->saliency,
+      "instead of rolling out: draw which pixels drive each method's action over "
+      "the recorded demonstration EPISODE (demo_N) into the session's probe/ folder");
+  saliency->excludes(tests)->excludes(seed)->excludes(probe);
+  eval->add_flag("--occlusion", eval_flags->occlusion,
+                 "with --saliency: an occlusion map instead of the input gradient")
+      ->needs(saliency);
+  eval->add_option("--frames", eval_flags->frames, "with --saliency: frames across the sheet")
+      ->check(WholeBetween(1, 64))
+      ->capture_default_str()
+      ->needs(saliency);
   eval->callback([eval_flags] { RunEval(*eval_flags); });
 }
 

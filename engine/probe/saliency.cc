@@ -144,7 +144,10 @@ RgbImage OverlaySaliency(const RgbImage& view, const SaliencyMap& map) {
     const int map_row = std::min(map.height - 1, r * map.height / side);
     for (int c = 0; c < side; ++c) {
       const int map_column = std::min(map.width - 1, c * map.width / side);
-      const double t = map.value[static_cast<size_t>(map_row) * map.width + map_column] / map.max;
+      // On a square-root scale: a gradient map is a few strong pixels among many weak but real
+      // ones, which a linear scale would hide.
+      const double t = std::sqrt(std::max(
+          0.0, double(map.value[static_cast<size_t>(map_row) * map.width + map_column]) / map.max));
       const std::array<double, 3> colour = SequentialColor(t);
       const double alpha = kMostOpaque * std::clamp(t, 0.0, 1.0);
       uint8_t* px = out.rgb.data() + (static_cast<size_t>(top + r) * out.width + left + c) * 3;

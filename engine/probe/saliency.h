@@ -38,7 +38,8 @@ SaliencyMap OcclusionSaliency(const learn::Policy& policy, const std::vector<flo
                               const std::vector<float>& y, int patch = 8, int stride = 4);
 
 /// `view` with `map` laid over it, a pixel's colour mixed with the project's sequential colour of
-/// its saliency (0 to map.max) in proportion to it, so unsalient pixels keep their own. `view`
+/// its saliency (0 to map.max, on a square-root scale) in proportion to it, so unsalient pixels
+/// keep their own. `view`
 /// comes from the camera the policy saw through, at any size: the policy's square image is its
 /// centred square (the same vertical field of view), where the map is drawn, nearest cell.
 RgbImage OverlaySaliency(const RgbImage& view, const SaliencyMap& map);

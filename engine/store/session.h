@@ -148,6 +148,8 @@ class Session {
   std::string ProbeSummaryPath() const;
   static std::string ProbeFigureRelativePath(const std::string& method, const std::string& object);
   std::string ProbeFigurePath(const std::string& method, const std::string& object) const;
+  /// The saliency sheet of a recorded demonstration (`recon eval --saliency demo_N`).
+  std::string SaliencySheetPath(const std::string& episode) const;
   /// The folders holding them.
   static constexpr char kProbeFolder[] = "probe";
   static constexpr char kCheckpointFolder[] = "checkpoints";

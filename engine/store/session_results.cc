@@ -66,6 +66,10 @@ std::string Session::ProbeFigurePath(const std::string& method, const std::strin
   return Path(ProbeFigureRelativePath(method, object));
 }
 
+std::string Session::SaliencySheetPath(const std::string& episode) const {
+  return Path((std::filesystem::path(kProbeFolder) / ("saliency_" + episode + ".png")).string());
+}
+
 std::string Session::ReportFolder() const { return Path("report"); }
 
 std::string Session::ReportPath() const {

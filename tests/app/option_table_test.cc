@@ -109,6 +109,7 @@ std::vector<OptionCase> NumericOptions() {
       {eval, "--seed", true},
       {eval + "--probe ", "--grid", true},
       {eval + "--probe ", "--readout-scenes", true},
+      {eval + "--saliency demo_0 ", "--frames", true},
       {record, "--demos", true},
       {record, "--play", true},
       {record, "--noise", false},

@@ -55,6 +55,52 @@ TEST_F(SessionCliTest, ProbePrintsWhatEachMethodLooksAtAndKeepsItsHeatMaps) {
   EXPECT_THAT(r.output, HasSubstr("probe.json"));
 }
 
+/// A PNG's width and height from its IHDR chunk.
+std::pair<uint32_t, uint32_t> PngSize(const std::string& bytes) {
+  const auto word = [&](size_t at) {
+    return (uint32_t(uint8_t(bytes[at])) << 24) | (uint32_t(uint8_t(bytes[at + 1])) << 16) |
+           (uint32_t(uint8_t(bytes[at + 2])) << 8) | uint32_t(uint8_t(bytes[at + 3]));
+  };
+  return {word(16), word(20)};
+}
+
+TEST_F(SessionCliTest, SaliencyDrawsWhatDrivesEachActionOverARecordedDemonstration) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world tabletop --demos 2 --seed 70");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("train --session " + session.string() + " --steps 20 --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("eval --session " + session.string() + " --saliency demo_1 --frames 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("rows: recorded; Baseline; RECON"));
+  const std::string png = ReadBytes(session / "probe" / "saliency_demo_1.png");
+  ASSERT_EQ(png.substr(0, 4), kPng);
+  // 3 frames of 64 x 64 drawn 3x across, 4 px apart; a row for the frames and one per method.
+  EXPECT_EQ(PngSize(png), (std::pair<uint32_t, uint32_t>{3 * 192 + 4 * 4, 3 * 192 + 4 * 4}));
+  r = RunRecon("eval --session " + session.string() +
+               " --saliency demo_0 --occlusion --frames 2 --method recon");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("occlusion saliency over demo_0"));
+  EXPECT_EQ(PngSize(ReadBytes(session / "probe" / "saliency_demo_0.png")),
+            (std::pair<uint32_t, uint32_t>{2 * 192 + 3 * 4, 2 * 192 + 3 * 4}));
+
+  const std::string saliency = "eval --session " + session.string() + " --saliency ";
+  const struct {
+    std::string args, words;
+  } cases[] = {
+      {saliency + "demo_9", "no demonstration \"demo_9\" (valid: demo_0, demo_1)"},
+      {saliency + "demo_0 --frames 0", "--frames"},
+      {saliency + "demo_0 --probe", "--probe"},
+      {"eval --session " + session.string() + " --occlusion", "--saliency"},
+  };
+  for (const auto& c : cases) {
+    r = RunRecon(c.args);
+    EXPECT_NE(r.exit_code, 0) << c.args;
+    EXPECT_THAT(r.output, HasSubstr(c.words)) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(session / "probe" / "saliency_demo_9.png"));
+}
+
 TEST_F(SessionCliTest, ProbeRefusesBadInputByNameAndWritesNothing) {
   const fs::path session = Path("s");
   CommandResult r = Record(session, "--world tabletop --demos 2 --seed 70");
