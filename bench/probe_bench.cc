@@ -79,25 +79,31 @@ void BM_ProbeTabletop10x10TwoMethods(benchmark::State& state) {
 }
 BENCHMARK(BM_ProbeTabletop10x10TwoMethods)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-void BM_SaliencyGradient64(benchmark::State& state) {
+/// One frame of a tabletop scene and a RECON policy of the recipe's shape.
+struct SaliencyCase {
+  worlds::Observation seen;
+  learn::Policy policy;
+};
+
+SaliencyCase MakeSaliencyCase() {
   auto world = MakeTabletop();
   world->Reset(7);
-  const worlds::Observation seen = world->Observe();
   DataSpec spec = world->Spec();
   spec.b_dim = 2;
-  const learn::Policy policy = RecipePolicy(spec, learn::Method::kRecon, 2);
-  for (auto _ : state) benchmark::DoNotOptimize(GradientSaliency(policy, seen.x, seen.y));
+  return {world->Observe(), RecipePolicy(spec, learn::Method::kRecon, 2)};
+}
+
+void BM_SaliencyGradient64(benchmark::State& state) {
+  const SaliencyCase c = MakeSaliencyCase();
+  for (auto _ : state) benchmark::DoNotOptimize(GradientSaliency(c.policy, c.seen.x, c.seen.y));
 }
 BENCHMARK(BM_SaliencyGradient64)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_SaliencyOcclusion64(benchmark::State& state) {
-  auto world = MakeTabletop();
-  world->Reset(7);
-  const worlds::Observation seen = world->Observe();
-  DataSpec spec = world->Spec();
-  spec.b_dim = 2;
-  const learn::Policy policy = RecipePolicy(spec, learn::Method::kRecon, 2);
-  for (auto _ : state) benchmark::DoNotOptimize(OcclusionSaliency(policy, seen.x, seen.y, 8, 4));
+  const SaliencyCase c = MakeSaliencyCase();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(OcclusionSaliency(c.policy, c.seen.x, c.seen.y, 8, 4));
+  }
 }
 BENCHMARK(BM_SaliencyOcclusion64)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -20,15 +20,6 @@ namespace {
 using testing::Progress;
 using testing::SnapshotAt;
 
-template <typename Command>
-std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
-  std::optional<Command> last;
-  for (const StudioCommand& c : commands) {
-    if (const auto* command = std::get_if<Command>(&c)) last = *command;
-  }
-  return last;
-}
-
 /// A 10 x 10 heat map that grows away from (x, y) = (0.4, -0.2), blank around (0.56, 0.33).
 ProbeView::Map Map(const std::string& label, float gain) {
   ProbeView::Map map;

@@ -19,15 +19,6 @@ namespace {
 using testing::Progress;
 using testing::SnapshotAt;
 
-template <typename Command>
-std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
-  std::optional<Command> last;
-  for (const StudioCommand& c : commands) {
-    if (const auto* command = std::get_if<Command>(&c)) last = *command;
-  }
-  return last;
-}
-
 StudioSnapshot RealCell(Progress progress, teach::Step step) {
   StudioSnapshot s = SnapshotAt(progress, step);
   s.cell_kind = "real";

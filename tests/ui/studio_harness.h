@@ -3,7 +3,9 @@
 // A headless studio window drawing whatever snapshot a test sets, and where the screens' goldens
 // live: shared by the screen tests.
 
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "ui/platform/headless_window.h"
@@ -40,6 +42,16 @@ class StudioHarness {
 
 inline std::string GoldenPath(const std::string& name) {
   return std::string(RECON_SOURCE_DIR) + "/assets/goldens/studio_" + name + ".png";
+}
+
+/// The last command of type `Command` among `commands`, if any.
+template <typename Command>
+std::optional<Command> Last(const std::vector<StudioCommand>& commands) {
+  std::optional<Command> last;
+  for (const StudioCommand& c : commands) {
+    if (const auto* command = std::get_if<Command>(&c)) last = *command;
+  }
+  return last;
 }
 
 }  // namespace recon::ui
