@@ -29,7 +29,7 @@ namespace {
 /// and not the probed scene either.
 constexpr uint64_t kReadoutStream = 0x72656164;  // "read"
 constexpr int kMinReadoutScenes = 8;             // one in four held out: at least 2
-constexpr int kMaxReadoutScenes = 10000;
+constexpr int kMaxReadoutScenes = 2000;          // their frames are held at once (about 50 kB each)
 
 probe::ProbeSubject Subject(const std::string& method, const std::string& label,
                             const learn::Policy& policy) {

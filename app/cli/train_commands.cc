@@ -318,7 +318,7 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->needs(probe);
   eval->add_option("--readout-scenes", eval_flags->readout_scenes,
                    "with --probe: test scenes for the features' read-out")
-      ->check(WholeBetween(8, 10000))
+      ->check(WholeBetween(8, 2000))
       ->capture_default_str()
       ->needs(probe);
   eval->add_flag("--json", eval_flags->json, "with --probe: print the numbers as one JSON object")

@@ -1,5 +1,6 @@
 #include "engine/probe/distractor_probe.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,6 +17,8 @@ constexpr int kMaxGridSide = 100;
 /// Cells nearer home than this say little per centimetre (a change over nothing): not averaged.
 constexpr double kMinMotion_m = 0.02;
 constexpr double kPer_m = 0.1;  // "per 10 cm"
+/// Places rendered before the methods look at them: bounds the memory of a large grid.
+constexpr size_t kChunk = 256;
 
 std::string Metres(double v) {
   char text[32];
@@ -64,31 +67,29 @@ double Distance(const std::vector<float>& a, const std::vector<float>& b) {
   return std::sqrt(sum);
 }
 
-/// One method's changes over the rendered places: row 0 is home, row r + 1 is place cells[r].
-ObjectProbe Measure(const ProbeSubject& subject, const ProbeSubject::Rows& xs,
-                    const ProbeSubject::Rows& ys, const std::vector<int>& cells,
-                    const std::vector<double>& motion_m, ObjectProbe probe) {
-  const ProbeSubject::Rows actions = subject.act(xs, ys);
-  const ProbeSubject::Rows features = subject.features(xs, ys);
-  const size_t n = static_cast<size_t>(probe.nx) * probe.ny;
-  probe.action_change.assign(n, std::numeric_limits<double>::quiet_NaN());
-  probe.feature_change.assign(n, std::numeric_limits<double>::quiet_NaN());
+/// One method's running tally over the places of one object.
+struct Tally {
+  std::vector<float> home_action, home_features;
   double action_sum = 0, feature_sum = 0;
   int counted = 0;
+};
+
+/// Adds the places rendered in `xs`, `ys` (cells[r], motion_m[r] of row r) to `probe` and `tally`.
+void Measure(const ProbeSubject& subject, const ProbeSubject::Rows& xs,
+             const ProbeSubject::Rows& ys, const std::vector<int>& cells,
+             const std::vector<double>& motion_m, ObjectProbe& probe, Tally& tally) {
+  if (xs.empty()) return;
+  const ProbeSubject::Rows actions = subject.act(xs, ys);
+  const ProbeSubject::Rows features = subject.features(xs, ys);
   for (size_t r = 0; r < cells.size(); ++r) {
     const size_t cell = static_cast<size_t>(cells[r]);
-    probe.action_change[cell] = Distance(actions[r + 1], actions[0]);
-    probe.feature_change[cell] = Distance(features[r + 1], features[0]);
+    probe.action_change[cell] = Distance(actions[r], tally.home_action);
+    probe.feature_change[cell] = Distance(features[r], tally.home_features);
     if (motion_m[r] < kMinMotion_m) continue;
-    action_sum += probe.action_change[cell] / motion_m[r] * kPer_m;
-    feature_sum += probe.feature_change[cell] / motion_m[r] * kPer_m;
-    ++counted;
+    tally.action_sum += probe.action_change[cell] / motion_m[r] * kPer_m;
+    tally.feature_sum += probe.feature_change[cell] / motion_m[r] * kPer_m;
+    ++tally.counted;
   }
-  if (counted > 0) {
-    probe.action_change_per_10cm = action_sum / counted;
-    probe.feature_change_per_10cm = feature_sum / counted;
-  }
-  return probe;
 }
 
 }  // namespace
@@ -99,9 +100,8 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
                          const std::atomic<bool>* cancel) {
   const std::optional<worlds::ObjectArea> area = world.PlaceableArea();
   if (!area) {
-    throw UserError("the " + world.Name() +
-                    " world cannot move its objects: the probe needs a simulated scene (the "
-                    "simulated cell's tabletop, or the digital twin)");
+    throw UserError("the probe moves objects over a table, which the " + world.Name() +
+                    " world cannot do (the simulated cell's tabletop can)");
   }
   if (subjects.empty()) throw UserError("the probe needs a trained method to probe");
   const std::array<double, 4> bounds = GridBounds(grid, *area);
@@ -109,7 +109,11 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
   const std::map<std::string, std::array<double, 2>> layout = world.ObjectLayout();
   ProbeResult result;
   result.scene_seed = scene_seed;
-  result.objects = objects;
+  for (const std::string& object : objects) {  // each once, in the order asked
+    if (std::find(result.objects.begin(), result.objects.end(), object) == result.objects.end()) {
+      result.objects.push_back(object);
+    }
+  }
   if (result.objects.empty()) {
     for (const auto& [name, place] : layout) result.objects.push_back(name);
   }
@@ -134,9 +138,34 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
     world.Reset(scene_seed);
     const std::array<double, 2> home = layout.at(object);
     const worlds::Observation seen = world.Observe();
-    ProbeSubject::Rows xs = {seen.x}, ys = {seen.y};
+    ObjectProbe empty;
+    empty.object = object;
+    empty.home = home;
+    empty.bounds = bounds;
+    empty.nx = grid.nx;
+    empty.ny = grid.ny;
+    const size_t n = static_cast<size_t>(grid.nx) * grid.ny;
+    empty.action_change.assign(n, std::numeric_limits<double>::quiet_NaN());
+    empty.feature_change.assign(n, std::numeric_limits<double>::quiet_NaN());
+    std::vector<ObjectProbe> probes(subjects.size(), empty);
+    std::vector<Tally> tallies(subjects.size());
+    for (size_t m = 0; m < subjects.size(); ++m) {
+      tallies[m].home_action = subjects[m].act({seen.x}, {seen.y}).front();
+      tallies[m].home_features = subjects[m].features({seen.x}, {seen.y}).front();
+    }
+    // Places are rendered and measured a chunk at a time: memory stays bounded whatever the grid.
+    ProbeSubject::Rows xs, ys;
     std::vector<int> cells;
     std::vector<double> motion_m;
+    const auto measure = [&] {
+      for (size_t m = 0; m < subjects.size(); ++m) {
+        Measure(subjects[m], xs, ys, cells, motion_m, probes[m], tallies[m]);
+      }
+      xs.clear();
+      ys.clear();
+      cells.clear();
+      motion_m.clear();
+    };
     for (int iy = 0; iy < grid.ny; ++iy) {
       for (int ix = 0; ix < grid.nx; ++ix) {
         if (cancel != nullptr && cancel->load()) throw ProbeCancelled{};
@@ -156,18 +185,19 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
           ys.push_back(moved.y);
           cells.push_back(iy * grid.nx + ix);
           motion_m.push_back(std::hypot(place[0] - home[0], place[1] - home[1]));
+          if (xs.size() >= kChunk) measure();
         }
         if (progress) progress(++done, total);
       }
     }
-    ObjectProbe empty;
-    empty.object = object;
-    empty.home = home;
-    empty.bounds = bounds;
-    empty.nx = grid.nx;
-    empty.ny = grid.ny;
+    measure();
     for (size_t m = 0; m < subjects.size(); ++m) {
-      result.probes[m].push_back(Measure(subjects[m], xs, ys, cells, motion_m, empty));
+      const Tally& t = tallies[m];
+      if (t.counted > 0) {
+        probes[m].action_change_per_10cm = t.action_sum / t.counted;
+        probes[m].feature_change_per_10cm = t.feature_sum / t.counted;
+      }
+      result.probes[m].push_back(std::move(probes[m]));
     }
   }
   world.Reset(scene_seed);  // the scene as it was

@@ -75,6 +75,23 @@ TEST(DistractorProbeTest, FindsTheObjectAPolicyReadsAndNotTheOther) {
   EXPECT_EQ(world.ObjectLayout().at("red"), (std::array<double, 2>{0.25, 0.28}));
 }
 
+TEST(DistractorProbeTest, ALargeGridIsMeasuredInChunksAndAnObjectAskedTwiceOnce) {
+  TwoObjectWorld world;
+  ProbeGrid grid;
+  grid.nx = grid.ny = 20;  // 400 places: more than one chunk of 256
+  const ProbeResult result = ProbeObjects(world, 3, {"red", "red"}, grid, {ReadsOnlyRed()});
+  ASSERT_EQ(result.objects, (std::vector<std::string>{"red"}));
+  ASSERT_EQ(result.probes[0].size(), 1u);
+  const ObjectProbe& red = result.probes[0][0];
+  int measured = 0;
+  for (double v : red.action_change) measured += std::isnan(v) ? 0 : 1;
+  EXPECT_GT(measured, 380);  // every place but those around the blue object
+  EXPECT_GT(red.action_change_per_10cm, 1.5);
+  EXPECT_LT(red.action_change_per_10cm, 2.5);
+  // The last cell (the far corner) was measured in the second chunk, against the same home.
+  EXPECT_GT(red.action_change.back(), red.action_change.front());
+}
+
 TEST(DistractorProbeTest, RefusesBadInputByNameBeforeRenderingAnything) {
   TwoObjectWorld world;
   const auto refused = [&](const std::vector<std::string>& objects, const ProbeGrid& grid,
@@ -106,7 +123,9 @@ TEST(DistractorProbeTest, RefusesBadInputByNameBeforeRenderingAnything) {
     ProbeObjects(fixed, 1, {}, {}, {ReadsOnlyRed()});
     ADD_FAILURE() << "a fixed world was probed";
   } catch (const UserError& e) {
-    EXPECT_THAT(e.what(), HasSubstr("needs a simulated scene"));
+    EXPECT_THAT(
+        e.what(),
+        HasSubstr("the probe moves objects over a table, which the two-objects world cannot do"));
   }
 }
 
