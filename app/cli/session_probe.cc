@@ -239,10 +239,10 @@ std::string ProbeSummaryText(const store::ProbeSummary& summary) {
   text += line;
   for (const auto& [method, probed] : summary.methods) {
     for (const auto& [object, o] : probed.objects) {
-      const std::string r2 = o.readout_r2 ? std::to_string(*o.readout_r2).substr(0, 5) : "-";
+      char r2[32] = "-";
+      if (o.readout_r2) std::snprintf(r2, sizeof(r2), "%.2f", *o.readout_r2);
       std::snprintf(line, sizeof(line), "%-18s %-8s %16.4g %16.4g %10s\n", probed.label.c_str(),
-                    object.c_str(), o.action_change_per_10cm, o.feature_change_per_10cm,
-                    r2.c_str());
+                    object.c_str(), o.action_change_per_10cm, o.feature_change_per_10cm, r2);
       text += line;
     }
   }

@@ -3,6 +3,7 @@
 // cancellable, kept in the session for the Rollouts step and the report; and the saliency laid
 // over the frames played back (rollouts, and the trials' recorded frames).
 
+#include <cstdio>
 #include <string>
 
 #include "app/cli/session_probe.h"
@@ -32,7 +33,9 @@ void StudioCell::Apply(const ui::RunProbe&) {
       const double seconds = summary.seconds;
       return [this, seconds] {
         Changed();
-        status_ = "Checked what the policies look at in " + std::to_string(seconds).substr(0, 4) +
+        char took[32];
+        std::snprintf(took, sizeof(took), "%.1f", seconds);
+        status_ = std::string("Checked what the policies look at in ") + took +
                   " s: see the heat maps under the rollouts.";
       };
     } catch (const probe::ProbeCancelled&) {
