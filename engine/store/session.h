@@ -143,7 +143,7 @@ class Session {
   std::string RealTrialsPath(const std::string& method) const;
   std::string TrialFramesPath(const std::string& method, int number) const;
   static std::string TrialFramesRelativePath(const std::string& method, int number);
-  /// What the distractor probe found of the trained methods (engine/probe/probe_summary.h), and
+  /// What the distractor probe found of the trained methods (engine/store/probe_summary.h), and
   /// the heat map of each method and object it moved.
   std::string ProbeSummaryPath() const;
   static std::string ProbeFigureRelativePath(const std::string& method, const std::string& object);
