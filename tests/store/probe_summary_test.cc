@@ -32,11 +32,11 @@ ProbeSummary TwoMethods() {
   ProbedMethod recon;
   recon.label = "RECON (Play)";
   recon.model_id = "fnv1a:00c0ffee00c0ffee";
-  recon.objects["plate"] = {0.0022, 0.099, 0.997, "probe/recon_plate.png"};
-  recon.objects["toast"] = {0.0004, 0.005, std::nullopt, std::nullopt};
+  recon.objects["plate"] = {0.0022, 0.099, 0.997, "probe/recon_plate.png", {}};
+  recon.objects["toast"] = {0.0004, 0.005, std::nullopt, std::nullopt, {}};
   ProbedMethod baseline;
   baseline.label = "Baseline";
-  baseline.objects["bowl"] = {0.0054, 0.128, -0.06, "probe/baseline_bowl.png"};
+  baseline.objects["bowl"] = {0.0054, 0.128, -0.06, "probe/baseline_bowl.png", {}};
   summary.methods = {{"recon", recon}, {"baseline", baseline}};
   return summary;
 }
