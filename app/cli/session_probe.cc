@@ -46,29 +46,6 @@ probe::ProbeSubject Subject(const std::string& method, const std::string& label,
   return subject;
 }
 
-std::vector<std::string> MethodsToProbe(const store::Session& session,
-                                        const std::vector<std::string>& asked) {
-  std::vector<std::string> methods = asked;
-  if (methods.empty()) {
-    for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
-    }
-    if (methods.empty()) {
-      throw UserError("session " + session.dir() + " has no trained method to probe: run `recon " +
-                      "train --session " + session.dir() + "` first; nothing was written");
-    }
-  }
-  for (const std::string& method : methods) {
-    learn::ParseMethod(method);
-    if (!fs::exists(session.CheckpointPath(method))) {
-      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
-                      " (run `recon train --session " + session.dir() + " --methods " + method +
-                      "`); nothing was written");
-    }
-  }
-  return methods;
-}
-
 /// One heat map per method and object into the session, each object's maps on one scale.
 void WriteHeatMaps(const store::Session& session, store::ProbeSummary& summary) {
   EnsureWritableDirectory(fs::path(session.ProbeSummaryPath()).parent_path().string());
@@ -83,6 +60,47 @@ void WriteHeatMaps(const store::Session& session, store::ProbeSummary& summary) 
 }
 
 }  // namespace
+
+std::vector<std::string> TrainedMethods(const store::Session& session,
+                                        const std::vector<std::string>& asked,
+                                        const std::string& purpose) {
+  std::vector<std::string> methods = asked;
+  if (methods.empty()) {
+    for (const char* method : {"baseline", "recon"}) {
+      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
+    }
+    if (methods.empty()) {
+      throw UserError("session " + session.dir() + " has no trained method " + purpose +
+                      ": run `recon train --session " + session.dir() +
+                      "` first; nothing was written");
+    }
+  }
+  for (const std::string& method : methods) {
+    learn::ParseMethod(method);
+    if (!fs::exists(session.CheckpointPath(method))) {
+      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
+                      " (run `recon train --session " + session.dir() + " --methods " + method +
+                      "`); nothing was written");
+    }
+  }
+  return methods;
+}
+
+std::string MethodLabel(const store::Session& session, const std::string& method) {
+  const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
+  return trained ? trained->label : method;
+}
+
+std::string ProbeNote(const store::ProbeSummary& summary) {
+  char note[256];
+  std::snprintf(note, sizeof(note),
+                "Objects moved one at a time over a %d x %d grid in test scene %llu; read-out "
+                "fitted and scored on %d other test scenes (seeds from %llu, one in four held "
+                "out).",
+                summary.nx, summary.ny, static_cast<unsigned long long>(summary.scene_seed),
+                summary.readout_scenes, static_cast<unsigned long long>(summary.readout_seed));
+  return note;
+}
 
 report::HeatMap ProbeHeatMap(const store::ProbeSummary& summary, const std::string& method,
                              const std::string& object) {
@@ -135,12 +153,11 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
                     std::to_string(kMaxReadoutScenes) + " test scenes, got " +
                     std::to_string(options.readout_scenes));
   }
-  const std::vector<std::string> methods = MethodsToProbe(session, options.methods);
+  const std::vector<std::string> methods = TrainedMethods(session, options.methods, "to probe");
   std::vector<probe::ProbeSubject> subjects;
   store::ProbeSummary summary;
   for (const std::string& method : methods) {
-    const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
-    const std::string label = trained ? trained->label : method;
+    const std::string label = MethodLabel(session, method);
     subjects.push_back(Subject(method, label, learn::LoadPolicy(session.CheckpointPath(method))));
     store::ProbedMethod& probed = summary.methods[method];
     probed.label = label;
@@ -246,12 +263,7 @@ std::string ProbeSummaryText(const store::ProbeSummary& summary) {
       text += line;
     }
   }
-  std::snprintf(line, sizeof(line),
-                "objects moved one at a time over a %d x %d grid in test scene %llu; read-out on "
-                "%d test scenes (seeds from %llu, one in four held out)\n",
-                summary.nx, summary.ny, static_cast<unsigned long long>(summary.scene_seed),
-                summary.readout_scenes, static_cast<unsigned long long>(summary.readout_seed));
-  text += line;
+  text += ProbeNote(summary) + "\n";
   return text;
 }
 

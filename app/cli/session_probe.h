@@ -40,6 +40,18 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
 report::HeatMap ProbeHeatMap(const store::ProbeSummary& summary, const std::string& method,
                              const std::string& object);
 
+/// The methods `asked` (every trained one when empty), each checked to be trained first:
+/// UserError naming what is missing (and that nothing was written), e.g. "session S has no
+/// trained method to probe" for `purpose` "to probe".
+std::vector<std::string> TrainedMethods(const store::Session& session,
+                                        const std::vector<std::string>& asked,
+                                        const std::string& purpose);
+/// The method's label as its training record has it ("RECON (Play)"); the method without one.
+std::string MethodLabel(const store::Session& session, const std::string& method);
+
+/// How the probe was made, in one sentence: the grid, the scene and the read-out's scenes.
+std::string ProbeNote(const store::ProbeSummary& summary);
+
 /// Why the probe no longer describes the session's models ("RECON (Play) retrained (or removed)
 /// since it was probed: probe again"); "" when it does.
 std::string ProbeStaleness(const store::Session& session, const store::ProbeSummary& summary);

@@ -218,14 +218,7 @@ void AddProbe(const store::Session& session, report::SessionReport& r) {
     }
   }
   part.out_of_date = ProbeStaleness(session, *probe);
-  char note[256];
-  std::snprintf(
-      note, sizeof(note),
-      "Objects moved one at a time over a %d x %d grid in test scene %llu; read-out fitted "
-      "and scored on %d other test scenes (seeds from %llu, one in four held out).",
-      probe->nx, probe->ny, static_cast<unsigned long long>(probe->scene_seed),
-      probe->readout_scenes, static_cast<unsigned long long>(probe->readout_seed));
-  part.note = note;
+  part.note = ProbeNote(*probe);
   r.probe = part;
 }
 

@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "app/cli/session_probe.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
+#include "engine/core/image.h"
 #include "engine/learn/learner.h"
 #include "engine/probe/saliency.h"
 #include "engine/report/image_png.h"
 #include "engine/store/episode_file.h"
-#include "engine/store/training_record.h"
 
 namespace recon::cli {
 
@@ -20,18 +21,6 @@ namespace {
 constexpr int kMaxFrames = 64;
 constexpr int kScale = 3;  // a 64 x 64 frame is drawn 192 x 192
 constexpr int kGap = 4;
-
-/// The channels-first 0-255 observation as an image.
-RgbImage FrameImage(const std::vector<float>& y, int size) {
-  RgbImage image{size, size, std::vector<uint8_t>(static_cast<size_t>(size) * size * 3)};
-  const size_t plane = static_cast<size_t>(size) * size;
-  for (size_t p = 0; p < plane; ++p) {
-    for (size_t c = 0; c < 3; ++c) {
-      image.rgb[p * 3 + c] = static_cast<uint8_t>(std::clamp(y[c * plane + p], 0.0f, 255.0f));
-    }
-  }
-  return image;
-}
 
 /// Copies `tile` into `sheet` at (left, top), each pixel kScale x kScale.
 void Place(const RgbImage& tile, int left, int top, RgbImage& sheet) {
@@ -62,28 +51,14 @@ SaliencySheet WriteSaliencySheet(const store::Session& session,
     throw UserError("the session has no demonstration \"" + options.episode + "\" (valid: " +
                     (demos.empty() ? "none recorded yet" : demos) + "); nothing was written");
   }
-  std::vector<std::string> methods = options.methods;
-  if (methods.empty()) {
-    for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
-    }
-    if (methods.empty()) {
-      throw UserError("session " + session.dir() + " has no trained method: run `recon train " +
-                      "--session " + session.dir() + "` first; nothing was written");
-    }
-  }
+  const std::vector<std::string> methods =
+      TrainedMethods(session, options.methods, "to draw a saliency of");
   std::vector<learn::Policy> policies;
   SaliencySheet sheet;
   sheet.rows.push_back("recorded");
   for (const std::string& method : methods) {
-    learn::ParseMethod(method);
-    if (!fs::exists(session.CheckpointPath(method))) {
-      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
-                      "; nothing was written");
-    }
     policies.push_back(learn::LoadPolicy(session.CheckpointPath(method)));
-    const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
-    sheet.rows.push_back(trained ? trained->label : method);
+    sheet.rows.push_back(MethodLabel(session, method));
   }
   const store::DemoRecord demo = session.ReadDemo(options.episode);
   const std::vector<Sample>& samples = demo.episode.samples;
@@ -108,7 +83,7 @@ SaliencySheet WriteSaliencySheet(const store::Session& session,
   image.rgb.assign(static_cast<size_t>(image.width) * image.height * 3, 255);
   for (int c = 0; c < columns; ++c) {
     const Sample& sample = samples[static_cast<size_t>(sheet.steps[static_cast<size_t>(c)])];
-    const RgbImage frame = FrameImage(sample.y, size);
+    const RgbImage frame = ImageFromObservation(sample.y, size);
     const int left = kGap + c * (tile + kGap);
     Place(frame, left, kGap, image);
     for (size_t m = 0; m < policies.size(); ++m) {

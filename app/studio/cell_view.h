@@ -54,10 +54,3 @@ Eigen::Vector3d TeleopVelocity(const worlds::OrbitCamera& camera, const ui::Tele
                                double speed_m_s);
 
 }  // namespace recon::studio
-
-namespace recon::studio {
-
-/// A camera observation y (3 x size x size, channels first, 0-255) as an image to show.
-RgbImage ImageFromObservation(const std::vector<float>& y, int size);
-
-}  // namespace recon::studio

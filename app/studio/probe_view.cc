@@ -1,7 +1,6 @@
 #include "app/studio/probe_view.h"
 
 #include <algorithm>
-#include <cstdio>
 
 #include "app/cli/session_probe.h"
 #include "engine/store/probe_summary.h"
@@ -24,13 +23,7 @@ ui::ProbeView BuildProbeView(const store::Session& session, const std::string& s
   }
   view.verdicts = cli::ProbeVerdicts(*summary);
   view.out_of_date = cli::ProbeStaleness(session, *summary);
-  char note[200];
-  std::snprintf(note, sizeof(note),
-                "Each object moved over a %d x %d grid in test scene %llu; read-out on %d other "
-                "test scenes.",
-                summary->nx, summary->ny, static_cast<unsigned long long>(summary->scene_seed),
-                summary->readout_scenes);
-  view.note = note;
+  view.note = cli::ProbeNote(*summary);
   if (view.objects.empty()) return view;
   const bool known =
       std::find(view.objects.begin(), view.objects.end(), shown_object) != view.objects.end();

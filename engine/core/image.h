@@ -18,4 +18,8 @@ struct RgbImage {
   }
 };
 
+/// A camera observation y (3 x size x size, channels first, 0-255, as the policies read it) as an
+/// image to show; empty when y is not of that size.
+RgbImage ImageFromObservation(const std::vector<float>& y, int size);
+
 }  // namespace recon
