@@ -213,10 +213,14 @@ void AddProbe(const store::Session& session, report::SessionReport& r) {
   for (const auto& [method, probed] : probe->methods) {
     for (const auto& [object, o] : probed.objects) {
       part.rows.push_back({probed.label, object, o.action_change_per_10cm,
-                           o.feature_change_per_10cm, o.readout_r2});
+                           o.feature_change_per_10cm, o.readout_r2, o.success_rate});
       if (!o.action_change.empty()) part.maps.push_back(ProbeHeatMap(*probe, method, object));
+      if (!o.outcome.empty()) {
+        part.outcome_maps.push_back(ProbeOutcomeMap(*probe, method, object));
+      }
     }
   }
+  part.verdicts = ProbeVerdicts(*probe);
   part.out_of_date = ProbeStaleness(session, *probe);
   part.note = ProbeNote(*probe);
   r.probe = part;

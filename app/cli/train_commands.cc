@@ -140,7 +140,10 @@ struct EvalFlags {
   std::vector<std::string> objects;
   int grid = 10;
   int readout_scenes = 60;
+  bool outcome = false;
   bool json = false;
+  /// The options given that only moving objects in the simulated cell can use.
+  std::vector<std::string> simulated_only;
   // --saliency demo_N: which pixels drive the actions over a recorded demonstration.
   std::string saliency;
   bool occlusion = false;
@@ -166,11 +169,20 @@ void RunSaliency(const EvalFlags& flags) {
 
 void RunProbe(const EvalFlags& flags) {
   const store::Session session = store::Session::Open(flags.session);
+  if (session.manifest().cell != "simulated" && !flags.simulated_only.empty()) {
+    std::string given;
+    for (const std::string& option : flags.simulated_only) given += (given.empty() ? "" : ", ") + option;
+    throw UserError(given + ": " + session.dir() + " was taught on a " + session.manifest().cell +
+                    " cell, which RECON Studio cannot simulate, so nothing can be moved or rolled "
+                    "out; without " + given + " its methods are read out on its recorded frames; "
+                    "nothing was written");
+  }
   SessionProbeOptions options;
   options.methods = flags.methods;
   options.objects = flags.objects;
   options.grid.nx = options.grid.ny = flags.grid;
   options.readout_scenes = flags.readout_scenes;
+  options.outcome = flags.outcome;
   std::unique_ptr<ProgressLine> progress;
   std::string phase;
   const store::ProbeSummary summary =
@@ -188,7 +200,8 @@ void RunProbe(const EvalFlags& flags) {
     std::printf("%s\n", store::ProbeSummaryToJson(summary).dump(2).c_str());
   } else {
     std::printf("%s", ProbeSummaryText(summary).c_str());
-    std::printf("wrote %s and the heat maps beside it (%.1f s)\n",
+    std::printf(summary.readout_scenes > 0 ? "wrote %s and the heat maps beside it (%.1f s)\n"
+                                           : "wrote %s (%.1f s)\n",
                 session.ProbeSummaryPath().c_str(), summary.seconds);
   }
 }
@@ -307,7 +320,8 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       "--probe", eval_flags->probe,
       "instead of rolling out: move each object over a grid of table places in a test scene and "
       "measure how much each method's action and features change (what it looks at), and read "
-      "each object's position out of the features on other test scenes");
+      "each object's position out of the features on other test scenes (a real cell's session: "
+      "read out on its recorded frames against the beacons' readings, nothing moved)");
   probe->excludes(tests)->excludes(seed);
   eval->add_option("--object", eval_flags->objects,
                    "with --probe: the object to move (repeatable; default: every one)")
@@ -320,6 +334,10 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
                    "with --probe: test scenes for the features' read-out")
       ->check(WholeBetween(8, 2000))
       ->capture_default_str()
+      ->needs(probe);
+  eval->add_flag("--outcome", eval_flags->outcome,
+                 "with --probe: also roll each method out whole from every place (does it still "
+                 "do the task with the object there? slower by the episode's length)")
       ->needs(probe);
   eval->add_flag("--json", eval_flags->json, "with --probe: print the numbers as one JSON object")
       ->needs(probe);
@@ -335,7 +353,13 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->check(WholeBetween(1, 64))
       ->capture_default_str()
       ->needs(saliency);
-  eval->callback([eval_flags] { RunEval(*eval_flags); });
+  eval->callback([eval_flags, eval] {
+    eval_flags->simulated_only.clear();
+    for (const char* option : {"--object", "--grid", "--readout-scenes", "--outcome"}) {
+      if (eval->count(option) > 0) eval_flags->simulated_only.push_back(option);
+    }
+    RunEval(*eval_flags);
+  });
 }
 
 }  // namespace recon::cli

@@ -15,10 +15,11 @@
 
 namespace recon::studio {
 
-void StudioCell::Apply(const ui::RunProbe&) {
+void StudioCell::Apply(const ui::RunProbe& c) {
   RequireIdle("check what the policies look at");
-  jobs_.Start(JobKind::kProbe, [this](JobThread& jobs) -> std::function<void()> {
+  jobs_.Start(JobKind::kProbe, [this, c](JobThread& jobs) -> std::function<void()> {
     cli::SessionProbeOptions options;  // every trained method and object, 10 x 10, 60 scenes
+    options.outcome = c.outcome;
     try {
       const store::ProbeSummary summary = cli::ProbeSession(
           *session_, options,
@@ -31,12 +32,15 @@ void StudioCell::Apply(const ui::RunProbe&) {
           },
           jobs.cancel_flag());
       const double seconds = summary.seconds;
-      return [this, seconds] {
+      const bool moved = summary.readout_scenes > 0;
+      return [this, seconds, moved] {
         Changed();
         char took[32];
         std::snprintf(took, sizeof(took), "%.1f", seconds);
-        status_ = std::string("Checked what the policies look at in ") + took +
-                  " s: see the heat maps under the rollouts.";
+        status_ = moved ? std::string("Checked what the policies look at in ") + took +
+                              " s: see the heat maps under the rollouts."
+                        : std::string("Read out what the features encode in ") + took +
+                              " s: see the table under the trials.";
       };
     } catch (const probe::ProbeCancelled&) {
       return [this] { status_ = "Probe cancelled; the session keeps the probe it had."; };

@@ -23,13 +23,15 @@ double SquaredError(const std::vector<float>& a, const std::vector<float>& b) {
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
                                             const std::vector<uint64_t>& scenario_seeds,
-                                            bool keep_replay, const EvaluationHooks& hooks) {
+                                            bool keep_replay, const EvaluationHooks& hooks,
+                                            const ScenarioArrangement& arrange) {
   const size_t n = scenario_seeds.size();
   std::vector<std::unique_ptr<worlds::World>> scenario_worlds;
   scenario_worlds.reserve(n);
   for (size_t i = 0; i < n; ++i) {
     scenario_worlds.push_back(make_world());
     scenario_worlds.back()->Reset(scenario_seeds[i]);
+    if (arrange) arrange(*scenario_worlds.back(), i);
   }
   if (n == 0) return {};
   const bool score_actions = scenario_worlds.front()->ScoresActions();

@@ -45,18 +45,24 @@ class EvaluationCancelled : public UserError {
   using UserError::UserError;
 };
 
+/// Sets a test scenario's world up after its reset and before the first step (the outcome probe
+/// moves an object there); unlike EvaluationHooks, it changes the rollout.
+using ScenarioArrangement = std::function<void(worlds::World& world, size_t scenario)>;
+
 /// Scores `policy` on each test scenario, one world per scenario stepped in lockstep so the
 /// policy sees all observations of a step in one batch. Usually the policy drives (a rollout) and
 /// the world's EpisodeMetric scores the end state; for worlds that ScoresActions(), the expert
 /// drives and the metric is the mean squared difference between the policy's and the expert's
 /// actions over the demonstration (mean over steps and action components).
 /// The worlds are made without beacons: a trained policy never reads one. `keep_replay` fills
-/// each outcome's replay; it changes nothing else.
+/// each outcome's replay; it changes nothing else. `arrange`, when given, is called on each
+/// scenario's world after its reset.
 std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
                                             const std::vector<uint64_t>& scenario_seeds,
                                             bool keep_replay = false,
-                                            const EvaluationHooks& hooks = {});
+                                            const EvaluationHooks& hooks = {},
+                                            const ScenarioArrangement& arrange = nullptr);
 
 /// The expert's outcome on the same scenarios (the ceiling a figure draws as a reference; 0 for
 /// worlds that ScoresActions()).

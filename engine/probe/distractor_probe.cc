@@ -2,10 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
-#include <optional>
 
 #include "engine/core/error.h"
 
@@ -13,50 +11,11 @@ namespace recon::probe {
 
 namespace {
 
-constexpr int kMaxGridSide = 100;
 /// Cells nearer home than this say little per centimetre (a change over nothing): not averaged.
 constexpr double kMinMotion_m = 0.02;
 constexpr double kPer_m = 0.1;  // "per 10 cm"
 /// Places rendered before the methods look at them: bounds the memory of a large grid.
 constexpr size_t kChunk = 256;
-
-std::string Metres(double v) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.2f", v);
-  return text;
-}
-
-std::string Names(const std::map<std::string, std::array<double, 2>>& layout) {
-  std::string names;
-  for (const auto& [name, place] : layout) names += (names.empty() ? "" : ", ") + name;
-  return names;
-}
-
-std::array<double, 4> GridBounds(const ProbeGrid& grid, const worlds::ObjectArea& area) {
-  if (grid.nx < 2 || grid.ny < 2 || grid.nx > kMaxGridSide || grid.ny > kMaxGridSide) {
-    throw UserError("a probe grid has 2 to " + std::to_string(kMaxGridSide) +
-                    " places per side, got " + std::to_string(grid.nx) + " x " +
-                    std::to_string(grid.ny));
-  }
-  const std::array<double, 4> table = {area.x_min, area.x_max, area.y_min, area.y_max};
-  const std::array<double, 4>& b = grid.bounds;
-  if (b == std::array<double, 4>{0, 0, 0, 0}) return table;
-  for (double v : b) {
-    if (!std::isfinite(v)) throw UserError("the probe grid's bounds must be finite numbers");
-  }
-  if (!(b[0] < b[1]) || !(b[2] < b[3])) {
-    throw UserError("the probe grid's bounds are empty: x from " + Metres(b[0]) + " to " +
-                    Metres(b[1]) + ", y from " + Metres(b[2]) + " to " + Metres(b[3]));
-  }
-  constexpr double kSlack_m = 1e-9;
-  if (b[0] < table[0] - kSlack_m || b[1] > table[1] + kSlack_m || b[2] < table[2] - kSlack_m ||
-      b[3] > table[3] + kSlack_m) {
-    throw UserError("the probe grid leaves the table: objects go at x " + Metres(table[0]) +
-                    " to " + Metres(table[1]) + " m and y " + Metres(table[2]) + " to " +
-                    Metres(table[3]) + " m");
-  }
-  return b;
-}
 
 double Distance(const std::vector<float>& a, const std::vector<float>& b) {
   double sum = 0;
@@ -98,31 +57,14 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
                          const std::vector<std::string>& objects, const ProbeGrid& grid,
                          const std::vector<ProbeSubject>& subjects, const ProbeProgress& progress,
                          const std::atomic<bool>* cancel) {
-  const std::optional<worlds::ObjectArea> area = world.PlaceableArea();
-  if (!area) {
-    throw UserError("the probe moves objects over a table, which the " + world.Name() +
-                    " world cannot do (the simulated cell's tabletop can)");
-  }
+  const worlds::ObjectArea area = TableOf(world);
   if (subjects.empty()) throw UserError("the probe needs a trained method to probe");
-  const std::array<double, 4> bounds = GridBounds(grid, *area);
+  const std::array<double, 4> bounds = GridBounds(grid, area);
   world.Reset(scene_seed);
   const std::map<std::string, std::array<double, 2>> layout = world.ObjectLayout();
   ProbeResult result;
   result.scene_seed = scene_seed;
-  for (const std::string& object : objects) {  // each once, in the order asked
-    if (std::find(result.objects.begin(), result.objects.end(), object) == result.objects.end()) {
-      result.objects.push_back(object);
-    }
-  }
-  if (result.objects.empty()) {
-    for (const auto& [name, place] : layout) result.objects.push_back(name);
-  }
-  for (const std::string& object : result.objects) {
-    if (!layout.count(object)) {
-      throw UserError("the " + world.Name() + " world has no object \"" + object +
-                      "\" (valid: " + Names(layout) + ")");
-    }
-  }
+  result.objects = ObjectsToProbe(world, layout, objects);
   for (const ProbeSubject& s : subjects) {
     result.methods.push_back(s.method);
     result.labels.push_back(s.label);
@@ -130,10 +72,6 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
   result.probes.assign(subjects.size(), {});
   const int total = static_cast<int>(result.objects.size()) * grid.nx * grid.ny;
   int done = 0;
-  const auto radius = [&](const std::string& name) {
-    const auto found = area->radius_m.find(name);
-    return found == area->radius_m.end() ? 0.0 : found->second;
-  };
   for (const std::string& object : result.objects) {
     world.Reset(scene_seed);
     const std::array<double, 2> home = layout.at(object);
@@ -166,29 +104,21 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
       cells.clear();
       motion_m.clear();
     };
-    for (int iy = 0; iy < grid.ny; ++iy) {
-      for (int ix = 0; ix < grid.nx; ++ix) {
-        if (cancel != nullptr && cancel->load()) throw ProbeCancelled{};
-        const std::array<double, 2> place = {
-            bounds[0] + (ix + 0.5) * (bounds[1] - bounds[0]) / grid.nx,
-            bounds[2] + (iy + 0.5) * (bounds[3] - bounds[2]) / grid.ny};
-        bool overlaps = false;
-        for (const auto& [other, where] : layout) {
-          if (other == object) continue;
-          overlaps |=
-              std::hypot(place[0] - where[0], place[1] - where[1]) < radius(object) + radius(other);
-        }
-        if (!overlaps) {
-          world.PlaceObject(object, place);
-          const worlds::Observation moved = world.Observe();
-          xs.push_back(moved.x);
-          ys.push_back(moved.y);
-          cells.push_back(iy * grid.nx + ix);
-          motion_m.push_back(std::hypot(place[0] - home[0], place[1] - home[1]));
-          if (xs.size() >= kChunk) measure();
-        }
-        if (progress) progress(++done, total);
+    const std::vector<GridPlace> places = FreePlaces(grid, bounds, area, layout, object);
+    size_t next = 0;
+    for (int cell = 0; cell < grid.nx * grid.ny; ++cell) {
+      if (cancel != nullptr && cancel->load()) throw ProbeCancelled{};
+      if (next < places.size() && places[next].cell == cell) {
+        const GridPlace& place = places[next++];
+        world.PlaceObject(object, place.xy);
+        const worlds::Observation moved = world.Observe();
+        xs.push_back(moved.x);
+        ys.push_back(moved.y);
+        cells.push_back(place.cell);
+        motion_m.push_back(place.motion_m);
+        if (xs.size() >= kChunk) measure();
       }
+      if (progress) progress(++done, total);
     }
     measure();
     for (size_t m = 0; m < subjects.size(); ++m) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/probe/probe_grid.h"
 #include "engine/worlds/world.h"
 
 namespace recon::probe {
@@ -24,14 +25,12 @@ struct ProbeSubject {
   std::string label;   ///< for people: "RECON (Play)"
   using Rows = std::vector<std::vector<float>>;
   std::function<Rows(const Rows&xs, const Rows&ys)> act, features;
-};
-
-/// The places an object is moved to: the centres of an nx x ny grid over `area`'s table (or the
-/// part given), skipping places where the object would overlap another.
-struct ProbeGrid {
-  int nx = 10, ny = 10;
-  /// x_min, x_max, y_min, y_max (metres); all zero: the world's whole placeable area.
-  std::array<double, 4> bounds = {0, 0, 0, 0};
+  /// Sets one copy of the scene up after its reset (the outcome probe moves an object there).
+  using Arrangement = std::function<void(worlds::World& world, size_t copy)>;
+  /// Whole rollouts from `copies` copies of the scene `scene_seed`, each set up by `arrange`:
+  /// whether each succeeded. Only the outcome probe (outcome_probe.h) asks for them.
+  std::function<std::vector<bool>(uint64_t scene_seed, size_t copies, const Arrangement& arrange)>
+      rollouts;
 };
 
 /// One object probed for one method.

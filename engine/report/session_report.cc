@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <set>
 
 #include "engine/core/files.h"
 #include "engine/report/html.h"
@@ -357,22 +358,55 @@ Part ProbePart(const SessionReport& report, FigureFiles& figures) {
     return part;
   }
   const SessionReport::Probe& probe = *report.probe;
-  part.status = Count(probe.maps.size(), "heat map", "heat maps");
-  part.body = OutOfDate("The probe", probe.out_of_date) +
-              "<p>Each object was moved over a grid of table places with everything else held, "
-              "and each policy's first action and features were compared with the scene as it "
-              "was. A policy that confuses the bowl with the plate moves with the bowl. The "
-              "read-out fits each object's position from the features on other test scenes "
-              "(R<sup>2</sup> 1: the features encode it; 0: not at all).</p>\n";
+  part.status = probe.maps.empty() ? "read out on recorded frames"
+                                    : Count(probe.maps.size() + probe.outcome_maps.size(),
+                                            "heat map", "heat maps");
+  const bool outcomes = std::any_of(probe.rows.begin(), probe.rows.end(),
+                                    [](const auto& row) { return row.success_rate.has_value(); });
+  part.body = OutOfDate("The probe", probe.out_of_date);
+  if (!probe.maps.empty()) {
+    part.body +=
+        "<p>Each object was moved over a grid of table places with everything else held, "
+        "and each policy's first action and features were compared with the scene as it "
+        "was. A policy that confuses the bowl with the plate moves with the bowl. The "
+        "read-out fits each object's position from the features on other test scenes "
+        "(R<sup>2</sup> 1: the features encode it; 0: not at all).";
+    if (outcomes) {
+      part.body += " Each policy was also rolled out whole from every place: does it still do "
+                   "the task with the object there?";
+    }
+    part.body += "</p>\n";
+  } else {
+    part.body +=
+        "<p>This session was taught on a real cell, which cannot be simulated, so nothing was "
+        "moved. The read-out fits each beacon's reading from the features on the recorded "
+        "frames and scores it on whole episodes it was not fitted on (R<sup>2</sup> 1: the "
+        "features encode the object; 0: not at all).</p>\n";
+  }
+  std::string verdicts;
+  for (const std::string& verdict : probe.verdicts) verdicts += "<li>" + Text(verdict) + "</li>";
+  if (!verdicts.empty()) part.body += "<ul>" + verdicts + "</ul>\n";
+  const auto number = [](const std::optional<double>& v) {
+    return v ? FormatNumber(*v) : std::string("&mdash;");
+  };
   Rows rows;
   for (const auto& row : probe.rows) {
-    rows.push_back({Text(row.label), Text(row.object), FormatNumber(row.action_change_per_10cm),
-                    FormatNumber(row.feature_change_per_10cm),
+    rows.push_back({Text(row.label), Text(row.object), number(row.action_change_per_10cm),
+                    number(row.feature_change_per_10cm),
                     row.readout_r2 ? FormatFixed(*row.readout_r2, 2) : "&mdash;"});
+    if (outcomes) {
+      rows.back().push_back(row.success_rate ? FormatFixed(100 * *row.success_rate, 0) + " %"
+                                             : "&mdash;");
+    }
   }
-  part.body += HtmlTable({"Policy", "Object moved", "Action change per 10 cm",
-                          "Feature change per 10 cm", "Read-out R\u00b2"},
-                         rows, {2, 3, 4});
+  std::vector<std::string> header = {"Policy", "Object moved", "Action change per 10 cm",
+                                     "Feature change per 10 cm", "Read-out R\u00b2"};
+  std::set<size_t> numeric = {2, 3, 4};
+  if (outcomes) {
+    header.push_back("Rollouts succeeded");
+    numeric.insert(5);
+  }
+  part.body += HtmlTable(header, rows, numeric);
   part.body += Note(probe.note);
   for (const HeatMap& map : probe.maps) {
     part.body += figures.Add(map, "probe_" + Slug(map.title),
@@ -380,6 +414,14 @@ Part ProbePart(const SessionReport& report, FigureFiles& figures) {
                                  ": how much the action changes with the object "
                                  "placed in each cell (blank: it would overlap "
                                  "another object); seen from behind the robot.");
+  }
+  for (const HeatMap& map : probe.outcome_maps) {
+    part.body += figures.Add(map, "probe_" + Slug(map.title),
+                             Text(map.title) +
+                                 ": where the whole rollout succeeded (bright) or failed (dark) "
+                                 "with the object placed in each cell (blank: it would overlap "
+                                 "another object, or the arm could not reach the task); seen "
+                                 "from behind the robot.");
   }
   return part;
 }

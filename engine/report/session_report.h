@@ -94,11 +94,15 @@ struct SessionReport {
   struct Probe {
     struct Row {
       std::string label, object;
-      double action_change_per_10cm = 0, feature_change_per_10cm = 0;
-      std::optional<double> readout_r2;  ///< none where the object never moved
+      /// None when the objects were not moved (a real cell's session, read out only).
+      std::optional<double> action_change_per_10cm, feature_change_per_10cm;
+      std::optional<double> readout_r2;    ///< none where the object never moved
+      std::optional<double> success_rate;  ///< with whole rollouts from each place
     };
     std::vector<Row> rows;
+    std::vector<std::string> verdicts;  ///< what each method moves with and encodes
     std::vector<HeatMap> maps;  ///< one per method and object, each object's on one scale
+    std::vector<HeatMap> outcome_maps;  ///< where whole rollouts succeeded, when rolled out
     std::string note;           ///< the scene, the grid and the read-out's scenes
     std::string out_of_date;    ///< why it is not of the methods' current models; "" if it is
   };

@@ -19,6 +19,35 @@ json OptionalNumber(const std::optional<double>& v) {
 
 json OptionalText(const std::optional<std::string>& v) { return v ? json(*v) : json(nullptr); }
 
+/// A number, or none for null or a missing key (a probe that did not measure it).
+std::optional<double> NullableNumber(const FieldReader& fields, const std::string& key) {
+  const double v = fields.OptionalNumberOrNan(key, NAN);
+  return std::isfinite(v) ? std::make_optional(v) : std::nullopt;
+}
+
+/// A figure's path, refused when it leads out of the session.
+std::optional<std::string> SessionFigure(const FieldReader& fields, const std::string& key) {
+  std::optional<std::string> figure = fields.OptionalNullableString(key);
+  if (figure) {
+    const std::filesystem::path p(*figure);
+    if (p.is_absolute() || p.lexically_normal().string().rfind("..", 0) == 0) {
+      fields.Fail(key, "\"" + *figure + "\" is outside the session");
+    }
+  }
+  return figure;
+}
+
+/// One value per grid cell, or none.
+std::vector<double> GridValues(const FieldReader& fields, const std::string& key,
+                               const ProbeSummary& summary) {
+  std::vector<double> values = fields.OptionalNumbers(key);
+  if (!values.empty() && values.size() != static_cast<size_t>(summary.nx) * summary.ny) {
+    fields.Fail(key,
+                "expected " + std::to_string(summary.nx * summary.ny) + " values (the grid's cells)");
+  }
+  return values;
+}
+
 }  // namespace
 
 json ProbeSummaryToJson(const ProbeSummary& summary) {
@@ -26,11 +55,15 @@ json ProbeSummaryToJson(const ProbeSummary& summary) {
   for (const auto& [method, probed] : summary.methods) {
     json objects = json::object();
     for (const auto& [object, o] : probed.objects) {
-      objects[object] = {{"action_change_per_10cm", o.action_change_per_10cm},
-                         {"feature_change_per_10cm", o.feature_change_per_10cm},
+      objects[object] = {{"action_change_per_10cm", OptionalNumber(o.action_change_per_10cm)},
+                         {"feature_change_per_10cm", OptionalNumber(o.feature_change_per_10cm)},
                          {"readout_r2", OptionalNumber(o.readout_r2)},
                          {"figure", OptionalText(o.figure)},
-                         {"action_change", o.action_change}};
+                         {"action_change", o.action_change},
+                         {"success_rate", OptionalNumber(o.success_rate)},
+                         {"outcome", o.outcome},
+                         {"home_succeeded", o.home_succeeded ? json(*o.home_succeeded) : json()},
+                         {"outcome_figure", OptionalText(o.outcome_figure)}};
     }
     methods[method] = objects;
     labels[method] = probed.label;
@@ -48,7 +81,11 @@ json ProbeSummaryToJson(const ProbeSummary& summary) {
             {"ny", summary.ny},
             {"bounds_m",
              {summary.bounds[0], summary.bounds[1], summary.bounds[2], summary.bounds[3]}}}},
-          {"readout", {{"scenes", summary.readout_scenes}, {"seed", summary.readout_seed}}},
+          {"readout",
+           {{"scenes", summary.readout_scenes},
+            {"seed", summary.readout_seed},
+            {"recorded_frames", summary.readout_frames},
+            {"recorded_episodes", summary.readout_episodes}}},
           {"seconds", summary.seconds}};
 }
 
@@ -71,6 +108,8 @@ ProbeSummary ProbeSummaryFromJson(const json& value, const std::string& source) 
     const FieldReader readout = top.Object("readout");
     summary.readout_scenes = static_cast<int>(readout.OptionalInteger("scenes", 0));
     summary.readout_seed = readout.OptionalUnsigned("seed", 0);
+    summary.readout_frames = static_cast<int>(readout.OptionalInteger("recorded_frames", 0));
+    summary.readout_episodes = static_cast<int>(readout.OptionalInteger("recorded_episodes", 0));
   }
   if (top.Has("layout")) {
     const FieldReader layout = top.Object("layout");
@@ -92,22 +131,16 @@ ProbeSummary ProbeSummaryFromJson(const json& value, const std::string& source) 
     for (const auto& [object, fields_value] : objects.object().items()) {
       const FieldReader fields = objects.Object(object);
       ProbedObject o;
-      o.action_change_per_10cm = fields.Number("action_change_per_10cm");
-      o.feature_change_per_10cm = fields.Number("feature_change_per_10cm");
-      const double r2 = fields.OptionalNumberOrNan("readout_r2", NAN);
-      if (std::isfinite(r2)) o.readout_r2 = r2;
-      o.figure = fields.OptionalNullableString("figure");
-      o.action_change = fields.OptionalNumbers("action_change");
-      if (!o.action_change.empty() &&
-          o.action_change.size() != static_cast<size_t>(summary.nx) * summary.ny) {
-        fields.Fail("action_change", "expected " + std::to_string(summary.nx * summary.ny) +
-                                         " values (the grid's cells)");
-      }
-      if (o.figure) {
-        const std::filesystem::path p(*o.figure);
-        if (p.is_absolute() || p.lexically_normal().string().rfind("..", 0) == 0) {
-          fields.Fail("figure", "\"" + *o.figure + "\" is outside the session");
-        }
+      o.action_change_per_10cm = NullableNumber(fields, "action_change_per_10cm");
+      o.feature_change_per_10cm = NullableNumber(fields, "feature_change_per_10cm");
+      o.readout_r2 = NullableNumber(fields, "readout_r2");
+      o.success_rate = NullableNumber(fields, "success_rate");
+      o.figure = SessionFigure(fields, "figure");
+      o.outcome_figure = SessionFigure(fields, "outcome_figure");
+      o.action_change = GridValues(fields, "action_change", summary);
+      o.outcome = GridValues(fields, "outcome", summary);
+      if (fields.Has("home_succeeded") && !fields.object().at("home_succeeded").is_null()) {
+        o.home_succeeded = fields.Boolean("home_succeeded", false);
       }
       probed.objects[object] = o;
     }

@@ -125,6 +125,7 @@ class Tabletop : public World {
   /// The plate (with its beacon), the bowl or the toast, moved in the table's plane at its
   /// height; the camera image is drawn again.
   void PlaceObject(const std::string& object, const std::array<double, 2>& xy) override;
+  bool TaskFeasible() const override;
 
   static const std::vector<std::string>& Placements();
   static const std::vector<std::string>& Layouts();

@@ -35,7 +35,17 @@ void Tabletop::PlaceObject(const std::string& object, const std::array<double, 2
   }
   mj_forward(scene_.model(), d);
   plate_side_ = PlatePosition().y() >= 0 ? 1 : -1;
+  closest_approach_m_ = (arm_->GripPosition() - ToastPosition()).norm();
   Render();
+}
+
+bool Tabletop::TaskFeasible() const {
+  try {
+    CheckReachable();
+    return true;
+  } catch (const UserError&) {
+    return false;  // a grasp or release place out of the arm's reach
+  }
 }
 
 }  // namespace recon::worlds

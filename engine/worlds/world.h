@@ -142,14 +142,17 @@ class World {
   /// (the default).
   virtual std::optional<ObjectArea> PlaceableArea() const { return std::nullopt; }
   /// Moves `object` (one of ObjectLayout's) to table (x, y) with everything else held, and
-  /// observes again: Observe() shows the scene with the object there. For looking only: Reset()
-  /// before stepping again. UserError naming the valid objects for an unknown one, or when the
-  /// world cannot move its objects.
+  /// observes again: Observe() shows the scene with the object there, and stepping from there
+  /// rolls out from the scene so arranged (the outcome probe). UserError naming the valid
+  /// objects for an unknown one, or when the world cannot move its objects.
   virtual void PlaceObject(const std::string& object, const std::array<double, 2>& xy) {
     (void)object;
     (void)xy;
     throw UserError("the " + Name() + " world cannot move its objects");
   }
+  /// Whether the task can be done at all in the scene as it stands (e.g. every place the arm
+  /// must reach is within its reach), after objects were placed by hand.
+  virtual bool TaskFeasible() const { return true; }
 };
 
 /// Noise injected into the executed action while demonstrating (DART, Laskey et al. 2017): the

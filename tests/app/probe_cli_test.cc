@@ -55,6 +55,81 @@ TEST_F(SessionCliTest, ProbePrintsWhatEachMethodLooksAtAndKeepsItsHeatMaps) {
   EXPECT_THAT(r.output, HasSubstr("probe.json"));
 }
 
+TEST_F(SessionCliTest, ProbeWithOutcomeRollsEachMethodOutFromEveryPlace) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world tabletop --demos 2 --seed 70");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("train --session " + session.string() + " --steps 20 --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("eval --session " + session.string() +
+               " --probe --grid 3 --object bowl --outcome --readout-scenes 8 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json printed = ParseJsonOutput(r);
+  for (const char* method : {"baseline", "recon"}) {
+    const json& bowl = printed["methods"][method]["bowl"];
+    ASSERT_TRUE(bowl["outcome"].is_array()) << printed.dump(1);
+    ASSERT_EQ(bowl["outcome"].size(), 9u);
+    // The share is of the places rolled out from (null: not rolled out there).
+    int rolled = 0, succeeded = 0;
+    for (const json& v : bowl["outcome"]) {
+      if (v.is_null()) continue;
+      ++rolled;
+      EXPECT_TRUE(v == 0.0 || v == 1.0) << v;
+      succeeded += v == 1.0 ? 1 : 0;
+    }
+    ASSERT_GT(rolled, 0);
+    EXPECT_DOUBLE_EQ(bowl["success_rate"].get<double>(), static_cast<double>(succeeded) / rolled);
+    EXPECT_TRUE(bowl["home_succeeded"].is_boolean());
+    const fs::path figure = session / bowl["outcome_figure"].get<std::string>();
+    EXPECT_EQ(ReadBytes(figure).substr(0, 4), kPng) << figure;
+  }
+  r = RunRecon("eval --session " + session.string() + " --probe --grid 2 --object bowl --outcome");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("rolling out from each place"));  // the progress line
+  EXPECT_THAT(r.output, HasSubstr("succeeded"));
+  EXPECT_THAT(r.output, HasSubstr("of the bowl's places"));
+}
+
+TEST_F(SessionCliTest, ARealCellsSessionIsReadOutOnItsRecordedFramesAndMovesNothing) {
+  const fs::path session = Path("s");
+  CommandResult r = Record(session, "--world tabletop --demos 4 --play 40 --seed 70");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("train --session " + session.string() + " --steps 30 --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The manifest now says a real cell recorded it: RECON Studio cannot simulate that cell.
+  json manifest = ReadJson(session / "session.json");
+  manifest["cell"]["kind"] = "real";
+  std::ofstream(session / "session.json") << manifest.dump(2);
+
+  const std::string probe = "eval --session " + session.string() + " --probe ";
+  for (const char* moving : {"--grid 4", "--object bowl", "--outcome", "--readout-scenes 20"}) {
+    r = RunRecon(probe + moving);
+    EXPECT_NE(r.exit_code, 0) << moving;
+    EXPECT_THAT(r.output, HasSubstr(std::string(moving).substr(0, std::string(moving).find(' '))));
+    EXPECT_THAT(r.output, HasSubstr("cannot simulate"));
+    EXPECT_FALSE(fs::exists(session / "probe")) << moving;
+  }
+  r = RunRecon(probe + "--json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json printed = ParseJsonOutput(r);
+  EXPECT_GT(printed["readout"]["recorded_frames"].get<int>(), 100);
+  EXPECT_EQ(printed["readout"]["recorded_episodes"].get<int>(), 4 + 4);  // 4 demos, 4 play chunks
+  for (const char* method : {"baseline", "recon"}) {
+    const json& methods = printed["methods"][method];
+    ASSERT_EQ(methods.size(), 1u) << methods.dump(1);  // the one beacon's object
+    const json& plate = methods["plate"];
+    EXPECT_TRUE(plate["readout_r2"].is_number()) << plate.dump();
+    EXPECT_LE(plate["readout_r2"].get<double>(), 1.0);
+    EXPECT_TRUE(plate["action_change_per_10cm"].is_null());
+    EXPECT_TRUE(plate["figure"].is_null());
+  }
+  r = RunRecon(probe);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("recorded frames of 8 episodes"));
+  EXPECT_THAT(r.output, HasSubstr("features encode"));
+  EXPECT_THAT(r.output, Not(HasSubstr("heat maps")));
+}
+
 /// A PNG's width and height from its IHDR chunk.
 std::pair<uint32_t, uint32_t> PngSize(const std::string& bytes) {
   const auto word = [&](size_t at) {
@@ -122,6 +197,7 @@ TEST_F(SessionCliTest, ProbeRefusesBadInputByNameAndWritesNothing) {
       {probe + "--tests 5", "--tests"},
       {"eval --session " + session.string() + " --object bowl", "--probe"},
       {"eval --session " + session.string() + " --json", "--probe"},
+      {"eval --session " + session.string() + " --outcome", "--probe"},
   };
   for (const auto& c : cases) {
     r = RunRecon(c.args);

@@ -110,9 +110,9 @@ SessionReport FullReport() {
                    {"RECON (Play)", 60, 45, 300, 405, std::nullopt}};
   report.ledger_note = "Times measured by the recorder.";
   SessionReport::Probe probe;
-  probe.rows = {{"Baseline", "bowl", 0.0054, 0.128, 0.21},
-                {"RECON (Play)", "bowl", 0.0003, 0.012, -0.06},
-                {"RECON (Play)", "toast", 0.0004, 0.005, std::nullopt}};
+  probe.rows = {{"Baseline", "bowl", 0.0054, 0.128, 0.21, 0.35},
+                {"RECON (Play)", "bowl", 0.0003, 0.012, -0.06, 0.9},
+                {"RECON (Play)", "toast", 0.0004, 0.005, std::nullopt, std::nullopt}};
   HeatMap map;
   map.title = "RECON (Play): the bowl moved";
   map.nx = 3;
@@ -220,6 +220,35 @@ TEST(SessionReportTest, FiguresAreWrittenAndDecode) {
     const size_t pixels = static_cast<size_t>(image.width()) * image.height();
     EXPECT_GT(pixels - white, pixels / 50) << "almost blank";
   }
+}
+
+TEST(SessionReportTest, TheProbeShowsWholeRolloutsOrARealCellsReadOutWithNothingMoved) {
+  ScratchDir dir("probe_kinds");
+  SessionReport rolled = FullReport();
+  HeatMap outcome = rolled.probe->maps.front();
+  outcome.title = "Baseline: whole rollouts, the bowl moved";
+  outcome.values = {1, 0, NAN, 1, 1, 0};
+  outcome.scale_max = 1;
+  rolled.probe->outcome_maps = {outcome};
+  rolled.probe->verdicts = {"Baseline succeeds from 35 % of the bowl's places"};
+  WriteSessionReport(rolled, dir.File("rolled"));
+  std::string html = ReadFile(dir.File("rolled/report.html"));
+  EXPECT_THAT(html, HasSubstr("Rollouts succeeded"));
+  EXPECT_THAT(html, HasSubstr("90 %"));  // RECON (Play) with the bowl moved
+  EXPECT_THAT(html, HasSubstr("succeeds from 35 %"));
+  EXPECT_TRUE(fs::exists(dir.File("rolled/figures/probe_Baseline__whole_rollouts__the_bowl_moved.png")));
+
+  // A real cell's session: only the read-out, on recorded frames; no grid, no map.
+  SessionReport real = FullReport();
+  real.probe->rows = {{"RECON", "plate", std::nullopt, std::nullopt, 0.93, std::nullopt}};
+  real.probe->maps.clear();
+  real.probe->note = "Read out on 400 recorded frames of 8 episodes.";
+  WriteSessionReport(real, dir.File("real"));
+  html = ReadFile(dir.File("real/report.html"));
+  EXPECT_THAT(html, HasSubstr("taught on a real cell"));
+  EXPECT_THAT(html, HasSubstr("0.93"));
+  EXPECT_THAT(html, Not(HasSubstr("Rollouts succeeded")));
+  EXPECT_FALSE(fs::exists(dir.File("real/figures/probe_RECON__Play___the_bowl_moved.png")));
 }
 
 TEST(SessionReportTest, EmbeddedImagesAreTheFigureFiles) {

@@ -44,12 +44,12 @@ StudioSnapshot Probed() {
   for (RolloutView& r : s.rollouts) r.has_replay = false;  // the panel in view, not the playback
   ProbeView& p = s.probe;
   p.present = true;
-  p.rows = {{"Baseline", "bowl", 0.00545, 0.128, 0.21},
-            {"Baseline", "plate", 0.00397, 0.0718, 0.13},
-            {"Baseline", "toast", 0.00203, 0.032, std::nullopt},
-            {"RECON (Play)", "bowl", 0.000318, 0.0117, -0.07},
-            {"RECON (Play)", "plate", 0.00216, 0.0987, 1.00},
-            {"RECON (Play)", "toast", 0.000363, 0.00517, std::nullopt}};
+  p.rows = {{"Baseline", "bowl", 0.00545, 0.128, 0.21, std::nullopt},
+            {"Baseline", "plate", 0.00397, 0.0718, 0.13, std::nullopt},
+            {"Baseline", "toast", 0.00203, 0.032, std::nullopt, std::nullopt},
+            {"RECON (Play)", "bowl", 0.000318, 0.0117, -0.07, std::nullopt},
+            {"RECON (Play)", "plate", 0.00216, 0.0987, 1.00, std::nullopt},
+            {"RECON (Play)", "toast", 0.000363, 0.00517, std::nullopt, std::nullopt}};
   p.verdicts = {
       "Baseline moves most with the bowl (0.00545 per 10 cm; the plate 0.00397; the "
       "toast 0.00203)",
@@ -79,7 +79,56 @@ TEST(ProbePanelTest, ShowsWhatEachPolicyMovesWithAndSwitchesTheObjectShown) {
   ASSERT_TRUE(shown.has_value());
   EXPECT_EQ(shown->object, "plate");
   harness.driver().Click("Check what it looks at");
-  EXPECT_TRUE(Last<RunProbe>(harness.Commands()).has_value());
+  std::optional<RunProbe> run = Last<RunProbe>(harness.Commands());
+  ASSERT_TRUE(run.has_value());
+  EXPECT_FALSE(run->outcome);
+  harness.driver().Click("...and roll out from every place");
+  run = Last<RunProbe>(harness.Commands());
+  ASSERT_TRUE(run.has_value());
+  EXPECT_TRUE(run->outcome);
+}
+
+/// Where whole rollouts succeeded (1) with the object in each cell, failed (0), or were not
+/// rolled out (NaN: overlap).
+ProbeView::Map OutcomeMap(const std::string& label, float reach) {
+  ProbeView::Map map = Map(label, 1.0f);
+  for (size_t i = 0; i < map.values.size(); ++i) {
+    if (std::isnan(map.values[i])) continue;
+    const float x = 0.22f + (static_cast<float>(i % 10) + 0.5f) * 0.06f;
+    map.values[i] = x < reach ? 1.0f : 0.0f;
+  }
+  map.scale_max = 1.0f;
+  return map;
+}
+
+TEST(ProbePanelTest, WholeRolloutsShowWhereEachPolicyStillDoesTheTask) {
+  StudioHarness harness;
+  StudioSnapshot s = Probed();
+  s.probe.rolled_out = true;
+  const double rates[] = {0.3, 0.8, 0.9, 0.95, 0.85, 0.9};
+  for (size_t i = 0; i < s.probe.rows.size(); ++i) s.probe.rows[i].success_rate = rates[i];
+  s.probe.verdicts.push_back(
+      "RECON (Play) succeeds from 95 % of the bowl's places, 85 % of the plate's places, 90 % "
+      "of the toast's places");
+  s.probe.outcome_maps = {OutcomeMap("Baseline", 0.4f), OutcomeMap("RECON (Play)", 0.75f)};
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("rollouts_probe_outcome")));
+  EXPECT_TRUE(harness.driver().Drawn("outcome-map##0"));
+  EXPECT_TRUE(harness.driver().Drawn("outcome-map##1"));
+}
+
+TEST(ProbePanelTest, ARealCellsSessionIsReadOutOnItsRecordedFrames) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kDone, teach::Step::kRollouts);
+  s.cell_kind = "real";
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);  // nothing to move
+  harness.Commands();
+  harness.driver().Click("Read out what its features encode");
+  const std::optional<RunProbe> run = Last<RunProbe>(harness.Commands());
+  ASSERT_TRUE(run.has_value());
+  EXPECT_FALSE(run->outcome);
 }
 
 TEST(ProbePanelTest, TheSaliencyToggleOverThePlaybackSendsTheModeChosen) {
@@ -119,11 +168,7 @@ TEST(ProbePanelTest, RunsWithAProgressBarAndACancelAndSaysWhyItCannotRun) {
   s = SnapshotAt(Progress::kRecorded, teach::Step::kRollouts);
   harness.Show(s);
   EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);
-  // A real cell's session cannot be probed: its scene has no simulation.
-  s = Probed();
-  s.cell_kind = "real";
-  harness.Show(s);
-  EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);
+  EXPECT_THROW(harness.driver().Click("...and roll out from every place"), UserError);
 }
 
 }  // namespace

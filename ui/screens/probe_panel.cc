@@ -13,16 +13,38 @@ namespace recon::ui {
 
 namespace {
 
+void DrawOptional(const std::optional<double>& value, const char* format) {
+  if (value) {
+    ImGui::Text(format, *value);
+  } else {
+    ImGui::TextDisabled("-");
+  }
+}
+
+void DrawMaps(const char* id, const std::vector<ProbeView::Map>& maps, const char* what,
+              const std::string& object) {
+  const float width = std::clamp((ImGui::GetContentRegionAvail().x - Px(16)) / 2, Px(160), Px(420));
+  for (size_t i = 0; i < maps.size(); ++i) {
+    if (i > 0) ImGui::SameLine(0, Px(16));
+    ImGui::BeginGroup();
+    ImGui::Text("%s: %s, the %s moved", maps[i].label.c_str(), what, object.c_str());
+    HeatMapView(Format("%s##%zu", id, i).c_str(), maps[i], width);
+    ImGui::EndGroup();
+  }
+}
+
 void DrawProbeResults(const ScreenContext& context) {
   const ProbeView& p = context.snapshot.probe;
   if (!p.out_of_date.empty()) StatusText(Status::kWarning, "Out of date: " + p.out_of_date + ".");
   for (const std::string& verdict : p.verdicts) ImGui::BulletText("%s", verdict.c_str());
-  if (ImGui::BeginTable("probe", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+  const int columns = p.rolled_out ? 6 : 5;
+  if (ImGui::BeginTable("probe", columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("Policy");
-    ImGui::TableSetupColumn("Object moved");
+    ImGui::TableSetupColumn("Object");
     ImGui::TableSetupColumn("Action change / 10 cm");
     ImGui::TableSetupColumn("Feature change / 10 cm");
     ImGui::TableSetupColumn("Read-out R2");
+    if (p.rolled_out) ImGui::TableSetupColumn("Rollouts succeeded");
     ImGui::TableHeadersRow();
     for (const ProbeView::Row& row : p.rows) {
       ImGui::TableNextRow();
@@ -31,20 +53,26 @@ void DrawProbeResults(const ScreenContext& context) {
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(row.object.c_str());
       ImGui::TableNextColumn();
-      ImGui::Text("%.3g", row.action_change_per_10cm);
+      DrawOptional(row.action_change_per_10cm, "%.3g");
       ImGui::TableNextColumn();
-      ImGui::Text("%.3g", row.feature_change_per_10cm);
+      DrawOptional(row.feature_change_per_10cm, "%.3g");
       ImGui::TableNextColumn();
       if (row.readout_r2) {
         ImGui::Text("%.2f", *row.readout_r2);
       } else {
         ImGui::TextDisabled("- (never moves)");
       }
+      if (p.rolled_out) {
+        ImGui::TableNextColumn();
+        DrawOptional(row.success_rate ? std::optional<double>(100 * *row.success_rate)
+                                      : std::nullopt,
+                     "%.0f %%");
+      }
     }
     ImGui::EndTable();
   }
   ImGui::TextDisabled("%s", p.note.c_str());
-  if (p.objects.empty()) return;
+  if (p.maps.empty() && p.outcome_maps.empty()) return;
   ImGui::TextUnformatted("Heat maps, moving:");
   for (const std::string& object : p.objects) {
     ImGui::SameLine();
@@ -52,17 +80,16 @@ void DrawProbeResults(const ScreenContext& context) {
       context.commands.Push(ShowProbeObject{object});
     }
   }
-  const float width = std::clamp((ImGui::GetContentRegionAvail().x - Px(16)) / 2, Px(160), Px(420));
-  for (size_t i = 0; i < p.maps.size(); ++i) {
-    if (i > 0) ImGui::SameLine(0, Px(16));
-    ImGui::BeginGroup();
-    ImGui::Text("%s: the %s moved", p.maps[i].label.c_str(), p.shown_object.c_str());
-    HeatMapView(Format("heat-map##%zu", i).c_str(), p.maps[i], width);
-    ImGui::EndGroup();
-  }
+  DrawMaps("heat-map", p.maps, "first action", p.shown_object);
   ImGui::TextDisabled(
       "Brighter: the action changes more with the %s there (same scale for "
       "every policy); seen from behind the robot.",
+      p.shown_object.c_str());
+  if (p.outcome_maps.empty()) return;
+  DrawMaps("outcome-map", p.outcome_maps, "whole rollouts", p.shown_object);
+  ImGui::TextDisabled(
+      "Bright: the rollout succeeded with the %s there; dark: it failed; blank: not rolled out "
+      "(overlap, or out of the arm's reach).",
       p.shown_object.c_str());
 }
 
@@ -110,18 +137,29 @@ void DrawProbePanel(const ScreenContext& context) {
     const bool trained = std::any_of(s.training.begin(), s.training.end(),
                                      [](const TrainingView& t) { return t.done; });
     const bool simulated = s.cell_kind == "simulated";
-    const char* why = !simulated ? "the check moves objects in the simulated cell, and this "
-                                   "session was taught on a real one"
-                      : !trained ? "train a policy first"
+    const char* why = !trained               ? "train a policy first"
                       : !s.busy_with.empty() ? "wait for what runs now"
                                              : "";
-    if (Button("Check what it looks at", simulated && trained && s.busy_with.empty(), why)) {
-      context.commands.Push(RunProbe{});
+    const bool can = trained && s.busy_with.empty();
+    if (simulated) {
+      if (Button("Check what it looks at", can, why)) context.commands.Push(RunProbe{});
+      ImGui::SameLine();
+      if (Button("...and roll out from every place", can, why)) {
+        context.commands.Push(RunProbe{true});
+      }
+      ImGui::TextWrapped(
+          "The check moves each object over the table, everything else held, and measures how "
+          "much each policy's first action follows it (seconds). Rolling out from every place "
+          "shows where each policy still does the task (minutes).");
+    } else {
+      if (Button("Read out what its features encode", can, why)) {
+        context.commands.Push(RunProbe{});
+      }
+      ImGui::SameLine();
+      ImGui::TextWrapped(
+          "fits each beacon's reading from the features on the recorded frames; moving objects "
+          "needs the simulated cell, which this real cell's session cannot have");
     }
-    ImGui::SameLine();
-    ImGui::TextWrapped(
-        "moves each object over the table, everything else held, and measures "
-        "how much each policy's action follows it (a few seconds)");
   }
   if (p.present) DrawProbeResults(context);
 }

@@ -58,8 +58,11 @@ struct RunRollouts {
   int tests = 10;
 };
 /// Checks what the trained methods look at (cli::ProbeSession) as a job; CancelProbe stops it,
-/// keeping the probe from before.
-struct RunProbe {};
+/// keeping the probe from before. `outcome` also rolls each method out whole from every place
+/// (minutes rather than seconds).
+struct RunProbe {
+  bool outcome = false;
+};
 struct CancelProbe {};
 /// Lays which pixels drive the action over the played-back frames (or stops).
 struct SetSaliency {

@@ -250,10 +250,13 @@ struct ProbeView {
   bool present = false;  ///< the session holds a probe
   struct Row {
     std::string label, object;
-    double action_change_per_10cm = 0, feature_change_per_10cm = 0;
-    std::optional<double> readout_r2;  ///< none where the object never moved
+    /// None when nothing was moved (a real cell's session: read out on its recorded frames).
+    std::optional<double> action_change_per_10cm, feature_change_per_10cm;
+    std::optional<double> readout_r2;    ///< none where the object never moved
+    std::optional<double> success_rate;  ///< with whole rollouts from every place
   };
   std::vector<Row> rows;
+  bool rolled_out = false;  ///< the probe rolled each method out from every place
   /// Per method, what its action moves with most: "RECON (Play) moves most with the plate".
   std::vector<std::string> verdicts;
   std::string note;                  ///< the scene, the grid, the read-out's scenes
@@ -271,6 +274,9 @@ struct ProbeView {
     std::vector<std::pair<std::string, std::array<float, 2>>> markers;  ///< objects' places
   };
   std::vector<Map> maps;
+  /// With whole rollouts: per method, where they succeeded (1) or failed (0) with the shown
+  /// object there (scale_max 1).
+  std::vector<Map> outcome_maps;
 };
 
 /// Everything the studio's screens draw, copied from the engine side once per frame under a
