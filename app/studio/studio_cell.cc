@@ -114,6 +114,9 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   play_.reset();
   replace_.reset();
   report_path_.clear();
+  trial_playback_ = {};
+  episode_playback_ = {};
+  saliency_models_.clear();
   world_ = std::move(made);
   HoldEmergencyStop();
   session_ = std::move(opened);

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <chrono>
+#include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -177,6 +179,10 @@ class StudioCell {
   void Apply(const ui::JudgeTrial& c);
   void Apply(const ui::EndTrials& c);
   void Apply(const ui::ShowTrialFrame& c);
+  // A recorded demonstration played back (studio_cell_episode_playback.cc).
+  void Apply(const ui::ShowEpisodeFrame& c);
+  /// The demonstration frame played back, with the saliency over it when on.
+  void DrawEpisodeFrame();
   // What the trained methods look at (studio_cell_probe.cc).
   void Apply(const ui::RunProbe& c);
   void Apply(const ui::CancelProbe& c);
@@ -252,9 +258,16 @@ class StudioCell {
   std::string report_path_;
   std::string probe_object_;  ///< whose heat maps the probe panel shows; "": the first probed
   ui::SaliencyMode saliency_ = ui::SaliencyMode::kOff;
-  /// The trial playback's model, for its saliency: loaded once per method shown.
-  std::optional<learn::Policy> trial_policy_;
-  std::string trial_policy_method_;
+  /// Frame `frame` of `frames` as the policy camera saw it, with the saliency of `method`'s
+  /// model laid over it while the saliency is on (studio_cell_probe.cc).
+  RgbImage SaliencyFrame(const store::TrialFrames& frames, size_t frame, const std::string& method);
+  /// The models the saliency reads, per method, each with its checkpoint's time: loaded again
+  /// once the method is retrained.
+  struct SaliencyModel {
+    std::filesystem::file_time_type written;
+    learn::Policy policy;
+  };
+  std::map<std::string, SaliencyModel> saliency_models_;
   bool homing_take_ = false;  ///< a person's take waits for the arm to be home
   Clock::time_point take_homing_since_, next_homing_;
   bool estop_ = false;
@@ -265,6 +278,8 @@ class StudioCell {
   std::unique_ptr<TrialRun> trial_;
   ui::TrialPlaybackView trial_playback_;
   store::TrialFrames trial_frames_;  ///< the frames of the trial played back
+  ui::EpisodePlaybackView episode_playback_;
+  store::TrialFrames episode_frames_;  ///< the demonstration played back, frame by frame
 };
 
 }  // namespace recon::studio

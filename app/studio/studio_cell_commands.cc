@@ -123,6 +123,7 @@ void StudioCell::Apply(const ui::DeleteEpisode& c) {
   RequireIdle("delete an episode");
   const store::EpisodeFlags flags = session_->Find(c.name).flags;
   last_deleted_ = Deleted{c.name, session_->DeleteEpisode(c.name), flags};
+  if (episode_playback_.episode == c.name) Apply(ui::ShowEpisodeFrame{});  // nothing to show
   status_ = "Moved " + c.name + " to the session's trash (Undo brings it back).";
 }
 
@@ -142,6 +143,7 @@ void StudioCell::Apply(const ui::ReRecordEpisode& c) {
   const store::EpisodeEntry& e = session_->Find(c.name);
   StartDemo(e.number, e.meta.seed);
   replace_ = c.name;
+  if (episode_playback_.episode == c.name) Apply(ui::ShowEpisodeFrame{});  // about to change
   status_ = "Re-recording " + c.name + ".";
 }
 

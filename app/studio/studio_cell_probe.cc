@@ -4,6 +4,7 @@
 // over the frames played back (rollouts, and the trials' recorded frames).
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "app/cli/session_probe.h"
@@ -18,7 +19,8 @@ namespace recon::studio {
 void StudioCell::Apply(const ui::RunProbe& c) {
   RequireIdle("check what the policies look at");
   jobs_.Start(JobKind::kProbe, [this, c](JobThread& jobs) -> std::function<void()> {
-    cli::SessionProbeOptions options;  // every trained method and object, 10 x 10, 60 scenes
+    cli::SessionProbeOptions options;  // every trained method and object, 60 read-out scenes
+    options.grid.nx = options.grid.ny = options_.probe_grid;
     options.outcome = c.outcome;
     try {
       const store::ProbeSummary summary = cli::ProbeSession(
@@ -54,24 +56,32 @@ void StudioCell::Apply(const ui::SetSaliency& c) {
   saliency_ = c.mode;
   if (playback_) playback_->SetSaliency(c.mode);
   if (trial_playback_.number > 0 && trial_playback_.frames > 0) DrawTrialFrame();
+  if (!episode_playback_.episode.empty() && episode_playback_.frames > 0) DrawEpisodeFrame();
+}
+
+RgbImage StudioCell::SaliencyFrame(const store::TrialFrames& frames, size_t frame,
+                                   const std::string& method) {
+  RgbImage image = ImageFromObservation(frames.y[frame], frames.image_size);
+  if (saliency_ == ui::SaliencyMode::kOff || method.empty()) return image;
+  const std::string checkpoint = session_->CheckpointPath(method);
+  const std::filesystem::file_time_type written = std::filesystem::last_write_time(checkpoint);
+  auto model = saliency_models_.find(method);
+  if (model == saliency_models_.end() || model->second.written != written) {
+    model = saliency_models_.insert_or_assign(method, SaliencyModel{written, learn::LoadPolicy(checkpoint)})
+                .first;
+  }
+  const learn::Policy& policy = model->second.policy;
+  const std::vector<float>& x = frames.x[frame];
+  const std::vector<float>& y = frames.y[frame];
+  const probe::SaliencyMap map = saliency_ == ui::SaliencyMode::kGradient
+                                     ? probe::GradientSaliency(policy, x, y)
+                                     : probe::OcclusionSaliency(policy, x, y);
+  return probe::OverlaySaliency(image, map);
 }
 
 void StudioCell::DrawTrialFrame() {
-  const size_t frame = static_cast<size_t>(trial_playback_.frame);
-  RgbImage image = ImageFromObservation(trial_frames_.y[frame], trial_frames_.image_size);
-  if (saliency_ != ui::SaliencyMode::kOff) {
-    if (!trial_policy_ || trial_policy_method_ != trial_playback_.method) {
-      trial_policy_ = learn::LoadPolicy(session_->CheckpointPath(trial_playback_.method));
-      trial_policy_method_ = trial_playback_.method;
-    }
-    const std::vector<float>& x = trial_frames_.x[frame];
-    const std::vector<float>& y = trial_frames_.y[frame];
-    const probe::SaliencyMap map = saliency_ == ui::SaliencyMode::kGradient
-                                       ? probe::GradientSaliency(*trial_policy_, x, y)
-                                       : probe::OcclusionSaliency(*trial_policy_, x, y);
-    image = probe::OverlaySaliency(image, map);
-  }
-  trial_playback_.image = std::move(image);
+  trial_playback_.image = SaliencyFrame(
+      trial_frames_, static_cast<size_t>(trial_playback_.frame), trial_playback_.method);
   ++trial_playback_.image_frame;
 }
 

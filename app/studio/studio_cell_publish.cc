@@ -95,6 +95,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   ShowPlayback(s);
   ShowTrial(s);
   s.trial_playback = trial_playback_;
+  s.episode_playback = episode_playback_;
   s.saliency = saliency_;
   if (!report_path_.empty()) s.report_path = report_path_;  // else the session view's
   s.errors = errors_;

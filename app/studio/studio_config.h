@@ -33,6 +33,8 @@ struct StudioOptions {
   double countdown_s = 3.0;
   int train_steps = 0;  ///< at most this many steps per method; 0: the world's recipe
   int rollout_tests = 10;
+  /// Places per side of the grid "Check what it looks at" moves each object over.
+  int probe_grid = 10;
   int calibration_points = 12;
   int view_width = 320;  ///< the live camera view (bigger than the policy's 64 x 64)
   int view_height = 240;

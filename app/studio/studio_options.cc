@@ -66,6 +66,10 @@ CLI::Option* AddStudioOptions(CLI::App& app, StudioFlags& flags) {
   app.add_option("--rollout-tests", flags.options.rollout_tests, "scenes per rollout run")
       ->check(WholeBetween(1, kMaxTests))
       ->capture_default_str();
+  app.add_option("--probe-grid", flags.options.probe_grid,
+                 "places per side of the grid \"Check what it looks at\" moves each object over")
+      ->check(WholeBetween(2, 100))
+      ->capture_default_str();
   app.add_option("--calibration-points", flags.options.calibration_points,
                  "places the beacon is put at for a calibration (the simulated cell's, or a "
                  "real cell's, paced by the teacher)")

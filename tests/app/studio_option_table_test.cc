@@ -35,6 +35,7 @@ std::vector<StudioOptionCase> NumericOptions() {
           {"--demo-noise", false},
           {"--train-steps", true},
           {"--rollout-tests", true},
+          {"--probe-grid", true},
           {"--frames", true},
           {"--width", true},
           {"--height", true},

@@ -1,6 +1,7 @@
 // The Rollouts step's "Check what it looks at" panel, headless: the button and why it is
 // disabled, the progress and its cancel, and the results (verdicts, the table, a heat map per
-// method of the object chosen), each state a golden and each control the command it sends.
+// method of the object chosen), each state a golden and each control the command it sends; and
+// the Record step's playback of a demonstration with the saliency over it.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -169,6 +170,72 @@ TEST(ProbePanelTest, RunsWithAProgressBarAndACancelAndSaysWhyItCannotRun) {
   harness.Show(s);
   EXPECT_THROW(harness.driver().Click("Check what it looks at"), UserError);
   EXPECT_THROW(harness.driver().Click("...and roll out from every place"), UserError);
+}
+
+/// A 64 x 64 frame: a table-grey floor with a bright square where the saliency would be.
+RgbImage Frame() {
+  RgbImage image;
+  image.width = image.height = 64;
+  image.rgb.assign(64 * 64 * 3, 90);
+  for (int r = 20; r < 34; ++r) {
+    for (int c = 30; c < 44; ++c) {
+      uint8_t* p = image.rgb.data() + (static_cast<size_t>(r) * 64 + c) * 3;
+      p[0] = 250;
+      p[1] = 220;
+      p[2] = 40;
+    }
+  }
+  return image;
+}
+
+TEST(EpisodePlayerTest, WatchesADemonstrationFrameByFrameWithTheSaliencyOfEachPolicy) {
+  StudioHarness harness;
+  StudioSnapshot s = SnapshotAt(Progress::kDone, teach::Step::kRecord);
+  ASSERT_FALSE(s.episodes.empty());
+  harness.Show(s);
+  EXPECT_FALSE(harness.driver().Drawn("Close##episode-playback"));  // nothing played back yet
+  harness.Commands();
+  const std::string first = s.episodes[0].name;
+  harness.driver().Click("Watch##" + first);
+  std::optional<ShowEpisodeFrame> shown = Last<ShowEpisodeFrame>(harness.Commands());
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_EQ(shown->episode, first);
+  EXPECT_EQ(shown->frame, 0);
+
+  EpisodePlaybackView& p = s.episode_playback;
+  p.episode = first;
+  p.frames = 120;
+  p.frame = 41;
+  p.method = "recon";
+  p.methods = {{"baseline", "Baseline"}, {"recon", "RECON (Play)"}};
+  p.image = Frame();
+  p.image_frame = 1;
+  s.saliency = SaliencyMode::kGradient;
+  harness.Show(s);
+  EXPECT_TRUE(::recon::testing::MatchesGolden(harness.driver().Screenshot(),
+                                              GoldenPath("record_episode_saliency")));
+  EXPECT_THROW(harness.driver().Click("Watch##" + first), UserError);  // shown already
+  harness.Commands();
+  harness.driver().Click("Baseline##episode-saliency");
+  shown = Last<ShowEpisodeFrame>(harness.Commands());
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_EQ(shown->method, "baseline");
+  EXPECT_EQ(shown->frame, 41);  // the same step, the other policy's saliency
+  harness.driver().Click("Off##saliency");
+  const std::optional<SetSaliency> off = Last<SetSaliency>(harness.Commands());
+  ASSERT_TRUE(off.has_value());
+  EXPECT_EQ(off->mode, SaliencyMode::kOff);
+  harness.driver().Click("Close##episode-playback");
+  shown = Last<ShowEpisodeFrame>(harness.Commands());
+  ASSERT_TRUE(shown.has_value());
+  EXPECT_TRUE(shown->episode.empty());
+
+  // Nothing trained: the frames play, and the screen says what a saliency needs.
+  p.methods.clear();
+  p.method.clear();
+  harness.Show(s);
+  EXPECT_THROW(harness.driver().Click("Gradient##saliency"), UserError);
+  EXPECT_TRUE(harness.driver().Drawn("Close##episode-playback"));
 }
 
 }  // namespace

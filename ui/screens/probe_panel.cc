@@ -95,7 +95,7 @@ void DrawProbeResults(const ScreenContext& context) {
 
 }  // namespace
 
-void DrawSaliencyToggle(const ScreenContext& context) {
+void DrawSaliencyToggle(const ScreenContext& context, bool hint_below) {
   const SaliencyMode shown = context.snapshot.saliency;
   ImGui::TextUnformatted("What drives the action:");
   const struct {
@@ -111,7 +111,7 @@ void DrawSaliencyToggle(const ScreenContext& context) {
     }
   }
   if (shown != SaliencyMode::kOff) {
-    ImGui::SameLine();
+    if (!hint_below) ImGui::SameLine();
     ImGui::TextDisabled(shown == SaliencyMode::kGradient
                             ? "brighter: a pixel's change moves the action more"
                             : "brighter: hiding that part of the view moves the action more");

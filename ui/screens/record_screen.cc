@@ -260,10 +260,16 @@ void DrawRecordScreen(const ScreenContext& context) {
   const float start_x = ImGui::GetCursorPosX();
   ImGui::BeginGroup();
   float left_width = 0;
-  if (s.teacher_view.available) {
-    const float view_width = TeacherViewWidth();
-    left_width = view_width + Px(kThumbnailWidth + 16);
-    DrawTeacherView(context, view_width);
+  const float views_width = s.teacher_view.available
+                                ? TeacherViewWidth() + Px(kThumbnailWidth + 16)
+                                : CameraWidth();
+  if (!s.episode_playback.episode.empty() && !s.recording) {
+    // A demonstration played back takes the live views' place until it is closed.
+    left_width = views_width;
+    DrawEpisodePlayer(context, left_width);
+  } else if (s.teacher_view.available) {
+    left_width = views_width;
+    DrawTeacherView(context, TeacherViewWidth());
   } else {
     left_width = CameraWidth();
     CameraView("camera##record", context.textures.camera, left_width, s.beacons, {});
@@ -300,7 +306,7 @@ void DrawRecordScreen(const ScreenContext& context) {
     ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(52));
     ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(42));
     // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(226));
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(290));
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());
@@ -319,6 +325,12 @@ void DrawRecordScreen(const ScreenContext& context) {
       ImGui::TextUnformatted(!e.problem.empty() ? "damaged" : e.succeeded ? "yes" : "no");
       ImGui::TableNextColumn();
       const bool idle = !s.recording && !blocked && s.pending_take.empty();
+      const bool shown = s.episode_playback.episode == e.name;
+      if (Button(("Watch##" + e.name).c_str(), e.problem.empty() && !shown,
+                 shown ? "shown below" : "the episode is damaged")) {
+        context.commands.Push(ShowEpisodeFrame{e.name, 0, s.episode_playback.method});
+      }
+      ImGui::SameLine();
       if (Button(("Delete##" + e.name).c_str(), idle)) {
         context.commands.Push(DeleteEpisode{e.name});
       }

@@ -21,6 +21,7 @@ struct StudioTextures {
   ImageTexture play;
   ImageTexture rollout;
   ImageTexture rollout_other;  ///< the second method's frame, side by side
+  ImageTexture episode;        ///< the Record screen's demonstration played back
 };
 
 /// What every screen gets: the frame's snapshot (read only) and where to put requests.
@@ -44,8 +45,12 @@ void DrawReportScreen(const ScreenContext& context);
 void DrawTrialsPanel(const ScreenContext& context);
 /// The Rollouts step's "Check what it looks at" panel (probe_panel.cc).
 void DrawProbePanel(const ScreenContext& context);
-/// Off / Gradient / Occlusion: the saliency over the frames played back (probe_panel.cc).
-void DrawSaliencyToggle(const ScreenContext& context);
+/// Off / Gradient / Occlusion: the saliency over the frames played back (probe_panel.cc); what
+/// the colours mean beside the buttons, or under them where the space is narrow.
+void DrawSaliencyToggle(const ScreenContext& context, bool hint_below = false);
+/// The Record step's playback of a recorded demonstration with the saliency toggle, `width`
+/// wide (episode_player.cc), in the live views' place.
+void DrawEpisodePlayer(const ScreenContext& context, float width);
 /// The Session menu of the menu bar (open, recent sessions) and the session picker page.
 void DrawSessionMenu(const ScreenContext& context);
 void DrawSessionPicker(const ScreenContext& context);

@@ -155,6 +155,15 @@ struct ShowTrialFrame {
   int frame = 0;
 };
 
+/// Shows frame `frame` of the recorded demonstration `episode` (what the camera saw while it
+/// was taught), with the saliency of `method`'s model over it while the saliency is on (empty:
+/// the first trained method). An empty `episode` closes the playback.
+struct ShowEpisodeFrame {
+  std::string episode;
+  int frame = 0;
+  std::string method;
+};
+
 using StudioCommand =
     std::variant<OpenStep, AssignBeacon, StartCalibration, CancelCalibration, StartRecording,
                  StopRecording, DiscardRecording, DeleteEpisode, ReRecordEpisode, MarkEpisodeBad,
@@ -162,7 +171,7 @@ using StudioCommand =
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
                  UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
-                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, RunProbe, CancelProbe,
+                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, ShowEpisodeFrame, RunProbe, CancelProbe,
                  ShowProbeObject, SetSaliency>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.

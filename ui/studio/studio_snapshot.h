@@ -215,6 +215,18 @@ struct TrialPlaybackView {
   uint64_t image_frame = 0;  ///< grows with every new image
 };
 
+/// A recorded demonstration played back on the Record screen (ShowEpisodeFrame): what the
+/// camera saw while it was taught, and which pixels a trained policy would act on.
+struct EpisodePlaybackView {
+  std::string episode;  ///< "demo_0"; empty: none shown
+  int frame = 0, frames = 0;
+  std::string method;  ///< whose saliency is laid over the frame while it is on
+  /// The trained methods to choose from: (method, label).
+  std::vector<std::pair<std::string, std::string>> methods;
+  RgbImage image;
+  uint64_t image_frame = 0;  ///< grows with every new image
+};
+
 /// One method's rollouts as the Rollouts screen shows them.
 struct RolloutView {
   std::string method;
@@ -357,6 +369,7 @@ struct StudioSnapshot {
   ProbeView probe;
   SaliencyMode saliency = SaliencyMode::kOff;  ///< over the rollout and trial playbacks
   TrialPlaybackView trial_playback;
+  EpisodePlaybackView episode_playback;
   bool rollouts_running = false;
   bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step
   int rollout_steps_done = 0, rollout_steps_total = 0;  ///< of the running rollouts, all methods
