@@ -6,6 +6,9 @@
 //   object (plate, bowl, toast) moved over a 10 x 10 grid of the table, each place rendered once
 //   and both methods' actions and features computed, then the read-out's 60 test scenes
 //   rendered and both methods' features read out (the issue: under 20 s).
+// BM_OutcomeProbeTabletop5x5TwoMethods: `--probe --outcome`'s rollouts alone: the bowl moved over
+//   a 5 x 5 grid and both methods rolled out whole from every free place (no target: a rollout
+//   costs an episode of steps, each rendered).
 // BM_SaliencyGradient64: the input-gradient saliency of one 64 x 64 frame (the issue: under
 //   50 ms). BM_SaliencyOcclusion64: the occlusion map of one frame (8 px patches, stride 4).
 // The policies have the tabletop recipe's networks at a fixed seed's initial weights: speed does
@@ -22,7 +25,9 @@
 #include "engine/learn/policy_impl.h"
 #include "engine/learn/target_scaling.h"
 #include "engine/probe/distractor_probe.h"
+#include "engine/experiments/evaluation.h"
 #include "engine/probe/feature_readout.h"
+#include "engine/probe/outcome_probe.h"
 #include "engine/probe/saliency.h"
 #include "engine/worlds/tabletop.h"
 
@@ -48,6 +53,15 @@ learn::Policy RecipePolicy(const DataSpec& spec, learn::Method method, uint64_t 
 
 ProbeSubject Subject(const learn::Policy& policy, const std::string& method) {
   ProbeSubject subject;
+  subject.rollouts = [policy](uint64_t seed, size_t copies, const ProbeSubject::Arrangement& arrange) {
+    const std::vector<experiments::ScenarioOutcome> outcomes = experiments::EvaluatePolicy(
+        [] { return std::unique_ptr<worlds::World>(MakeTabletop()); }, policy,
+        std::vector<uint64_t>(copies, seed), false, {},
+        [&arrange](worlds::World& w, size_t copy) { arrange(w, copy); });
+    std::vector<bool> succeeded;
+    for (const experiments::ScenarioOutcome& o : outcomes) succeeded.push_back(o.succeeded);
+    return succeeded;
+  };
   subject.method = subject.label = method;
   subject.act = [policy](const ProbeSubject::Rows& xs, const ProbeSubject::Rows& ys) {
     return policy.ActBatch(xs, ys);
@@ -78,6 +92,31 @@ void BM_ProbeTabletop10x10TwoMethods(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_ProbeTabletop10x10TwoMethods)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void BM_OutcomeProbeTabletop5x5TwoMethods(benchmark::State& state) {
+  auto world = MakeTabletop();
+  DataSpec spec = world->Spec();
+  spec.b_dim = 2;
+  const std::vector<ProbeSubject> subjects = {
+      Subject(RecipePolicy(spec, learn::Method::kBaseline, 1), "baseline"),
+      Subject(RecipePolicy(spec, learn::Method::kRecon, 2), "recon")};
+  ProbeGrid grid;
+  grid.nx = grid.ny = 5;
+  int places = 0;
+  for (auto _ : state) {
+    const OutcomeResult result = ProbeOutcomes(*world, 7, {"bowl"}, grid, subjects);
+    places = result.outcomes[0][0].places;
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["outcome_probe_s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["places"] = places;
+}
+BENCHMARK(BM_OutcomeProbeTabletop5x5TwoMethods)
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 /// One frame of a tabletop scene and a RECON policy of the recipe's shape.
 struct SaliencyCase {

@@ -57,6 +57,9 @@ COUNTERS = {
          "train_to_rollouts_s", "s"),
     "probe_tabletop_10x10_two_methods":
         ("BM_ProbeTabletop10x10TwoMethods/iterations:1/real_time", "probe_s", "s"),
+    # Informational (no target): whole rollouts from each of the bowl's places, 5 x 5 grid.
+    "outcome_probe_tabletop_5x5_two_methods":
+        ("BM_OutcomeProbeTabletop5x5TwoMethods/iterations:1/real_time", "outcome_probe_s", "s"),
     "uwb_lec_lines_per_second": ("BM_LecParseLines", "lines_per_s", "lines/s"),
     "uwb_tlv_frames_per_second": ("BM_TlvParseFrames", "frames_per_s", "frames/s"),
     "uwb_pty_line_to_reading_median":

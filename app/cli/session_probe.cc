@@ -80,40 +80,6 @@ void WriteHeatMaps(const store::Session& session, store::ProbeSummary& summary) 
   }
 }
 
-}  // namespace
-
-std::vector<std::string> TrainedMethods(const store::Session& session,
-                                        const std::vector<std::string>& asked,
-                                        const std::string& purpose) {
-  std::vector<std::string> methods = asked;
-  if (methods.empty()) {
-    for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
-    }
-    if (methods.empty()) {
-      throw UserError("session " + session.dir() + " has no trained method " + purpose +
-                      ": run `recon train --session " + session.dir() +
-                      "` first; nothing was written");
-    }
-  }
-  for (const std::string& method : methods) {
-    learn::ParseMethod(method);
-    if (!fs::exists(session.CheckpointPath(method))) {
-      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
-                      " (run `recon train --session " + session.dir() + " --methods " + method +
-                      "`); nothing was written");
-    }
-  }
-  return methods;
-}
-
-std::string MethodLabel(const store::Session& session, const std::string& method) {
-  const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
-  return trained ? trained->label : method;
-}
-
-namespace {
-
 /// The methods to probe, loaded, and the summary's entries for them.
 std::vector<probe::ProbeSubject> LoadSubjects(const store::Session& session,
                                               const std::vector<std::string>& methods,
@@ -159,7 +125,93 @@ void ReadOutRecordedFrames(const store::Session& session,
   }
 }
 
+/// A simulated session: each object moved over the grid (and, with `outcome`, rolled out from
+/// every place), and the objects read out of the features on other test scenes.
+void MoveObjects(const store::Session& session, const SessionProbeOptions& options,
+                 const std::vector<probe::ProbeSubject>& subjects, store::ProbeSummary& summary,
+                 const SessionProbeProgress& progress, const std::atomic<bool>* cancel) {
+  const auto report = [&progress](const char* what) -> probe::ProbeProgress {
+    return [&progress, what](int done, int total) {
+      if (progress) progress(what, done, total);
+    };
+  };
+  const std::unique_ptr<worlds::World> world = MakeSessionWorld(session.manifest(), "none");
+  const uint64_t test_seed = DefaultTestSeed(session);
+  summary.scene_seed = Rng::Derive(test_seed, 0);  // the first rollout's scene
+  const probe::ProbeResult result =
+      probe::ProbeObjects(*world, summary.scene_seed, options.objects, options.grid, subjects,
+                          report("moving objects"), cancel);
+  std::optional<probe::OutcomeResult> outcomes;
+  if (options.outcome) {
+    outcomes = probe::ProbeOutcomes(*world, summary.scene_seed, options.objects, options.grid,
+                                    subjects, report("rolling out from each place"), cancel);
+  }
+  world->Reset(summary.scene_seed);
+  summary.layout = world->ObjectLayout();
+  summary.readout_seed = Rng::Derive(test_seed, kReadoutStream);
+  summary.readout_scenes = options.readout_scenes;
+  std::vector<uint64_t> seeds;
+  for (int i = 0; i < options.readout_scenes; ++i) {
+    seeds.push_back(Rng::Derive(summary.readout_seed, static_cast<uint64_t>(i)));
+  }
+  const probe::SceneFrames frames =
+      probe::RenderScenes(*world, seeds, report("rendering read-out scenes"), cancel);
+  const probe::ObjectProbe& any = result.probes.front().front();
+  summary.nx = any.nx;
+  summary.ny = any.ny;
+  summary.bounds = any.bounds;
+  for (size_t m = 0; m < subjects.size(); ++m) {
+    const auto scores = probe::ReadOutObjects(subjects[m], frames);
+    store::ProbedMethod& probed = summary.methods[subjects[m].method];
+    for (size_t k = 0; k < result.probes[m].size(); ++k) {
+      const probe::ObjectProbe& p = result.probes[m][k];
+      store::ProbedObject& o = probed.objects[p.object];
+      o.action_change_per_10cm = p.action_change_per_10cm;
+      o.feature_change_per_10cm = p.feature_change_per_10cm;
+      o.action_change = p.action_change;
+      const auto score = scores.find(p.object);
+      if (score != scores.end() && score->second) o.readout_r2 = score->second->r2;
+      if (outcomes) {
+        const probe::ObjectOutcome& rolled = outcomes->outcomes[m][k];
+        o.outcome = rolled.succeeded;
+        o.success_rate = rolled.success_rate;
+        o.home_succeeded = rolled.home_succeeded;
+      }
+    }
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> TrainedMethods(const store::Session& session,
+                                        const std::vector<std::string>& asked,
+                                        const std::string& purpose) {
+  std::vector<std::string> methods = asked;
+  if (methods.empty()) {
+    for (const char* method : {"baseline", "recon"}) {
+      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
+    }
+    if (methods.empty()) {
+      throw UserError("session " + session.dir() + " has no trained method " + purpose +
+                      ": run `recon train --session " + session.dir() +
+                      "` first; nothing was written");
+    }
+  }
+  for (const std::string& method : methods) {
+    learn::ParseMethod(method);
+    if (!fs::exists(session.CheckpointPath(method))) {
+      throw UserError(method + " is not trained: there is no " + session.CheckpointPath(method) +
+                      " (run `recon train --session " + session.dir() + " --methods " + method +
+                      "`); nothing was written");
+    }
+  }
+  return methods;
+}
+
+std::string MethodLabel(const store::Session& session, const std::string& method) {
+  const std::optional<store::TrainingRecord> trained = store::ReadTrainingRecord(session, method);
+  return trained ? trained->label : method;
+}
 
 store::ProbeSummary ProbeSession(const store::Session& session, const SessionProbeOptions& options,
                                  const SessionProbeProgress& progress,
@@ -183,60 +235,12 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
   const std::vector<std::string> methods = TrainedMethods(session, options.methods, "to probe");
   store::ProbeSummary summary;
   const std::vector<probe::ProbeSubject> subjects = LoadSubjects(session, methods, summary);
-  const auto report = [&](const char* what) {
-    return [&progress, what](int done, int total) {
-      if (progress) progress(what, done, total);
-    };
-  };
   if (!simulated) {
     if (progress) progress("reading out recorded frames", 0, 1);
     ReadOutRecordedFrames(session, subjects, summary);
     if (progress) progress("reading out recorded frames", 1, 1);
   } else {
-    const std::unique_ptr<worlds::World> world = MakeSessionWorld(manifest, "none");
-    const uint64_t test_seed = DefaultTestSeed(session);
-    summary.scene_seed = Rng::Derive(test_seed, 0);  // the first rollout's scene
-    const probe::ProbeResult result =
-        probe::ProbeObjects(*world, summary.scene_seed, options.objects, options.grid, subjects,
-                            report("moving objects"), cancel);
-    std::optional<probe::OutcomeResult> outcomes;
-    if (options.outcome) {
-      outcomes = probe::ProbeOutcomes(*world, summary.scene_seed, options.objects, options.grid,
-                                      subjects, report("rolling out from each place"), cancel);
-    }
-    world->Reset(summary.scene_seed);
-    summary.layout = world->ObjectLayout();
-    summary.readout_seed = Rng::Derive(test_seed, kReadoutStream);
-    summary.readout_scenes = options.readout_scenes;
-    std::vector<uint64_t> seeds;
-    for (int i = 0; i < options.readout_scenes; ++i) {
-      seeds.push_back(Rng::Derive(summary.readout_seed, static_cast<uint64_t>(i)));
-    }
-    const probe::SceneFrames frames =
-        probe::RenderScenes(*world, seeds, report("rendering read-out scenes"), cancel);
-    const probe::ObjectProbe& any = result.probes.front().front();
-    summary.nx = any.nx;
-    summary.ny = any.ny;
-    summary.bounds = any.bounds;
-    for (size_t m = 0; m < subjects.size(); ++m) {
-      const auto scores = probe::ReadOutObjects(subjects[m], frames);
-      store::ProbedMethod& probed = summary.methods[methods[m]];
-      for (size_t k = 0; k < result.probes[m].size(); ++k) {
-        const probe::ObjectProbe& p = result.probes[m][k];
-        store::ProbedObject& o = probed.objects[p.object];
-        o.action_change_per_10cm = p.action_change_per_10cm;
-        o.feature_change_per_10cm = p.feature_change_per_10cm;
-        o.action_change = p.action_change;
-        const auto score = scores.find(p.object);
-        if (score != scores.end() && score->second) o.readout_r2 = score->second->r2;
-        if (outcomes) {
-          const probe::ObjectOutcome& rolled = outcomes->outcomes[m][k];
-          o.outcome = rolled.succeeded;
-          o.success_rate = rolled.success_rate;
-          o.home_succeeded = rolled.home_succeeded;
-        }
-      }
-    }
+    MoveObjects(session, options, subjects, summary, progress, cancel);
   }
   if (cancel != nullptr && cancel->load()) throw probe::ProbeCancelled{};
   WriteHeatMaps(session, summary);

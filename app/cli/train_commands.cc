@@ -185,15 +185,17 @@ void RunProbe(const EvalFlags& flags) {
   options.outcome = flags.outcome;
   std::unique_ptr<ProgressLine> progress;
   std::string phase;
+  int shown = 0;  // units the line shows done: reports may come a batch of places at a time
   const store::ProbeSummary summary =
       ProbeSession(session, options, [&](const std::string& what, int done, int total) {
         if (what != phase) {
           if (progress) progress->Finish();
           progress = std::make_unique<ProgressLine>(what, total);
           phase = what;
+          shown = 0;
         }
-        progress->Advance(1);
-        (void)done;
+        if (done > shown) progress->Advance(done - shown);
+        shown = std::max(shown, done);
       });
   if (progress) progress->Finish();
   if (flags.json) {

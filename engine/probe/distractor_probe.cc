@@ -57,14 +57,12 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
                          const std::vector<std::string>& objects, const ProbeGrid& grid,
                          const std::vector<ProbeSubject>& subjects, const ProbeProgress& progress,
                          const std::atomic<bool>* cancel) {
-  const worlds::ObjectArea area = TableOf(world);
-  if (subjects.empty()) throw UserError("the probe needs a trained method to probe");
-  const std::array<double, 4> bounds = GridBounds(grid, area);
-  world.Reset(scene_seed);
-  const std::map<std::string, std::array<double, 2>> layout = world.ObjectLayout();
+  const ProbedScene scene = SetUpProbe(world, scene_seed, objects, grid, subjects.size());
+  const std::array<double, 4>& bounds = scene.bounds;
+  const std::map<std::string, std::array<double, 2>>& layout = scene.layout;
   ProbeResult result;
   result.scene_seed = scene_seed;
-  result.objects = ObjectsToProbe(world, layout, objects);
+  result.objects = scene.objects;
   for (const ProbeSubject& s : subjects) {
     result.methods.push_back(s.method);
     result.labels.push_back(s.label);
@@ -104,7 +102,7 @@ ProbeResult ProbeObjects(worlds::World& world, uint64_t scene_seed,
       cells.clear();
       motion_m.clear();
     };
-    const std::vector<GridPlace> places = FreePlaces(grid, bounds, area, layout, object);
+    const std::vector<GridPlace> places = FreePlaces(grid, bounds, scene.area, layout, object);
     size_t next = 0;
     for (int cell = 0; cell < grid.nx * grid.ny; ++cell) {
       if (cancel != nullptr && cancel->load()) throw ProbeCancelled{};

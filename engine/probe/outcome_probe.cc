@@ -21,21 +21,17 @@ OutcomeResult ProbeOutcomes(worlds::World& world, uint64_t scene_seed,
                             const std::vector<std::string>& objects, const ProbeGrid& grid,
                             const std::vector<ProbeSubject>& subjects,
                             const ProbeProgress& progress, const std::atomic<bool>* cancel) {
-  const worlds::ObjectArea area = TableOf(world);
+  const ProbedScene scene = SetUpProbe(world, scene_seed, objects, grid, subjects.size());
   if (!world.HasSuccess()) {
     throw UserError("the " + world.Name() +
                     " world's rollouts do not succeed or fail, so there is no outcome to probe");
   }
-  if (subjects.empty()) throw UserError("the probe needs a trained method to probe");
   for (const ProbeSubject& s : subjects) {
     if (!s.rollouts) throw UserError(s.label + " cannot be rolled out here");
   }
-  const std::array<double, 4> bounds = GridBounds(grid, area);
-  world.Reset(scene_seed);
-  const std::map<std::string, std::array<double, 2>> layout = world.ObjectLayout();
   OutcomeResult result;
   result.scene_seed = scene_seed;
-  result.objects = ObjectsToProbe(world, layout, objects);
+  result.objects = scene.objects;
   result.outcomes.assign(subjects.size(), {});
   const int cells = grid.nx * grid.ny;
   const int total = static_cast<int>(result.objects.size()) * cells;
@@ -44,7 +40,7 @@ OutcomeResult ProbeOutcomes(worlds::World& world, uint64_t scene_seed,
     // Places where the task cannot be done at all say nothing of the policy: left out.
     std::vector<GridPlace> places;
     int infeasible = 0;
-    for (const GridPlace& place : FreePlaces(grid, bounds, area, layout, object)) {
+    for (const GridPlace& place : FreePlaces(grid, scene.bounds, scene.area, scene.layout, object)) {
       world.Reset(scene_seed);
       world.PlaceObject(object, place.xy);
       if (world.TaskFeasible()) {

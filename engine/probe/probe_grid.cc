@@ -19,8 +19,6 @@ std::string Metres(double v) {
   return text;
 }
 
-}  // namespace
-
 std::array<double, 4> GridBounds(const ProbeGrid& grid, const worlds::ObjectArea& area) {
   if (grid.nx < 2 || grid.ny < 2 || grid.nx > kMaxGridSide || grid.ny > kMaxGridSide) {
     throw UserError("a probe grid has 2 to " + std::to_string(kMaxGridSide) +
@@ -46,6 +44,31 @@ std::array<double, 4> GridBounds(const ProbeGrid& grid, const worlds::ObjectArea
   }
   return b;
 }
+
+std::vector<std::string> ObjectsToProbe(const worlds::World& world,
+                                        const std::map<std::string, std::array<double, 2>>& layout,
+                                        const std::vector<std::string>& asked) {
+  std::vector<std::string> objects;
+  for (const std::string& object : asked) {  // each once, in the order asked
+    if (std::find(objects.begin(), objects.end(), object) == objects.end()) {
+      objects.push_back(object);
+    }
+  }
+  if (objects.empty()) {
+    for (const auto& [name, place] : layout) objects.push_back(name);
+  }
+  for (const std::string& object : objects) {
+    if (!layout.count(object)) {
+      std::string names;
+      for (const auto& [name, place] : layout) names += (names.empty() ? "" : ", ") + name;
+      throw UserError("the " + world.Name() + " world has no object \"" + object + "\" (valid: " +
+                      names + ")");
+    }
+  }
+  return objects;
+}
+
+}  // namespace
 
 std::vector<GridPlace> FreePlaces(const ProbeGrid& grid, const std::array<double, 4>& bounds,
                                   const worlds::ObjectArea& area,
@@ -74,36 +97,22 @@ std::vector<GridPlace> FreePlaces(const ProbeGrid& grid, const std::array<double
   return places;
 }
 
-std::vector<std::string> ObjectsToProbe(const worlds::World& world,
-                                        const std::map<std::string, std::array<double, 2>>& layout,
-                                        const std::vector<std::string>& asked) {
-  std::vector<std::string> objects;
-  for (const std::string& object : asked) {  // each once, in the order asked
-    if (std::find(objects.begin(), objects.end(), object) == objects.end()) {
-      objects.push_back(object);
-    }
-  }
-  if (objects.empty()) {
-    for (const auto& [name, place] : layout) objects.push_back(name);
-  }
-  for (const std::string& object : objects) {
-    if (!layout.count(object)) {
-      std::string names;
-      for (const auto& [name, place] : layout) names += (names.empty() ? "" : ", ") + name;
-      throw UserError("the " + world.Name() + " world has no object \"" + object + "\" (valid: " +
-                      names + ")");
-    }
-  }
-  return objects;
-}
-
-worlds::ObjectArea TableOf(const worlds::World& world) {
+ProbedScene SetUpProbe(worlds::World& world, uint64_t scene_seed,
+                       const std::vector<std::string>& objects, const ProbeGrid& grid,
+                       size_t subjects) {
   const std::optional<worlds::ObjectArea> area = world.PlaceableArea();
   if (!area) {
     throw UserError("the probe moves objects over a table, which the " + world.Name() +
                     " world cannot do (the simulated cell's tabletop can)");
   }
-  return *area;
+  if (subjects == 0) throw UserError("the probe needs a trained method to probe");
+  ProbedScene scene;
+  scene.area = *area;
+  scene.bounds = GridBounds(grid, scene.area);
+  world.Reset(scene_seed);
+  scene.layout = world.ObjectLayout();
+  scene.objects = ObjectsToProbe(world, scene.layout, objects);
+  return scene;
 }
 
 }  // namespace recon::probe

@@ -4,6 +4,7 @@
 // checked against the table's extent, less the places where the object would overlap another.
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,23 +28,28 @@ struct GridPlace {
   double motion_m = 0;                ///< how far from where the scene had the object
 };
 
-/// The grid's bounds on `area`: UserError for fewer than 2 x 2 or more than 100 x 100 places,
-/// or bounds that are not finite, are empty or leave the table (naming its extent).
-std::array<double, 4> GridBounds(const ProbeGrid& grid, const worlds::ObjectArea& area);
-
 /// The places of `grid` (within `bounds`) where `object` overlaps no other object of `layout`.
 std::vector<GridPlace> FreePlaces(const ProbeGrid& grid, const std::array<double, 4>& bounds,
                                   const worlds::ObjectArea& area,
                                   const std::map<std::string, std::array<double, 2>>& layout,
                                   const std::string& object);
 
-/// The objects to probe: `asked` once each in the order asked (every object of `layout` when
-/// empty). UserError naming the valid objects for one the world does not have.
-std::vector<std::string> ObjectsToProbe(const worlds::World& world,
-                                        const std::map<std::string, std::array<double, 2>>& layout,
-                                        const std::vector<std::string>& asked);
+/// What every probe starts from: the world's table, the grid's bounds on it, the scene's layout
+/// and the objects to move.
+struct ProbedScene {
+  worlds::ObjectArea area;
+  std::array<double, 4> bounds = {0, 0, 0, 0};
+  std::map<std::string, std::array<double, 2>> layout;
+  std::vector<std::string> objects;
+};
 
-/// The world's table, checked: UserError when it cannot move its objects.
-worlds::ObjectArea TableOf(const worlds::World& world);
+/// Resets `world` to `scene_seed` and checks everything a probe needs before it renders.
+/// UserError when the world cannot move its objects, when there is no subject (`subjects` 0),
+/// for fewer than 2 x 2 or more than 100 x 100 places, for bounds that are not finite, are empty
+/// or leave the table (naming its extent), or for an object the world does not have (naming the
+/// valid ones). `objects` are taken once each in the order asked; all of the scene's when empty.
+ProbedScene SetUpProbe(worlds::World& world, uint64_t scene_seed,
+                       const std::vector<std::string>& objects, const ProbeGrid& grid,
+                       size_t subjects);
 
 }  // namespace recon::probe
