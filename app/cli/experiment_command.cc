@@ -1,5 +1,6 @@
 #include "app/cli/experiment_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -10,6 +11,8 @@
 #include "app/cli/experiment_flags.h"
 #include "app/cli/option_checks.h"
 #include "app/cli/output_path.h"
+#include "app/cli/run_main.h"
+#include "app/cli/sweep_commands.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/machine.h"
@@ -28,29 +31,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void PrintTable(const std::vector<experiments::ConditionSummary>& summaries,
-                const experiments::ExperimentResult& result) {
-  const bool success = result.has_success;
-  std::printf("\n%-16s %6s %9s %7s %4s %6s%s  %s\n", "condition", "demos", "mean", "sem", "n",
-              "steps", success ? "  success" : "",
-              result.higher_is_better ? "(higher is better)" : "(lower is better)");
-  for (const auto& s : summaries) {
-    char rate[32] = "";
-    if (success) std::snprintf(rate, sizeof(rate), "  %6.0f%%", 100.0 * s.success_rate);
-    std::printf("%-16s %6d %9.3f %7.3f %4d %6d%s%s\n", s.condition.c_str(), s.demos, s.mean, s.sem,
-                s.n, s.train_steps, rate,
-                s.diverged > 0 ? ("  (" + std::to_string(s.diverged) + " diverged)").c_str() : "");
-  }
-  std::printf("%-16s %6s %9.3f\n", "expert", "", result.expert_metric);
-}
-
 void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOptions& global) {
   const experiments::ExperimentConfig config = ToConfig(flags, command);
   experiments::ValidateExperimentConfig(config);
   const std::string out = flags.out.empty() ? DefaultOutDir(flags.world) : flags.out;
   // Fail before an hour of training, not after: the folder must be writable, and results of an
   // earlier experiment are never replaced unless asked.
-  CheckOutputFolder("--out", out, flags.force, "summary.json");
+  // A folder with this sweep's plan is resumed (PlanSweep refuses another sweep's).
+  if (!fs::exists(experiments::PlanPath(out))) {
+    CheckOutputFolder("--out", out, flags.force, "summary.json");
+  }
   if (fs::exists(fs::path(out) / "summary.json") && !flags.force) {
     throw UserError(out +
                     " already holds an experiment's results (summary.json); choose "
@@ -59,46 +49,52 @@ void Run(const ExperimentFlags& flags, const CLI::App& command, const GlobalOpti
   EnsureWritableDirectory(out);
   learn::SetThreads(global.threads);
 
-  const int total = static_cast<int>(config.conditions.size() * config.demos.size()) * config.runs;
+  // One code path: the plan, its units (here on the local cores), and the collection.
+  const experiments::SweepPlan plan =
+      PlanSweep(config, SweepArguments(CommandLine()), out, flags.force);
+  const int total = static_cast<int>(plan.units.size());
+  if (flags.plan_only) {
+    std::printf(
+        "planned %d units into %s (%s): run each with `recon experiment run-unit %s --unit K` "
+        "(K from 0 to %d), here or on a cluster's nodes, then `recon experiment collect %s`\n",
+        total, out.c_str(), experiments::PlanPath(out).c_str(), out.c_str(), total - 1,
+        out.c_str());
+    return;
+  }
   std::printf(
       "recon experiment %s: %zu conditions x %zu demo counts x %d runs = %d models, "
       "%d test scenarios, seed %llu, %d parallel jobs x %d thread(s), kernels %s on %s\n",
       config.world.c_str(), config.conditions.size(), config.demos.size(), config.runs, total,
       config.tests, static_cast<unsigned long long>(config.seed), config.jobs, global.threads,
       learn::KernelsInUse().c_str(), CpuModelName().c_str());
-  std::fflush(stdout);
-  std::printf("each finished run is kept in %s until the results are written\n",
+  std::printf("each finished run is kept in %s and %s until the results are written\n",
+              (fs::path(out) / "units").c_str(),
               (fs::path(out) / experiments::kRunsSoFarFile).c_str());
   std::fflush(stdout);
+  const auto start = std::chrono::steady_clock::now();
   ProgressLine progress("training", total);
-  std::vector<experiments::RunResult> finished;  // the runner calls back one run at a time
-  const experiments::ExperimentResult result =
-      experiments::RunExperiment(config, [&](const experiments::RunResult& r) {
-        finished.push_back(r);
-        experiments::WriteRunsSoFar(finished, out);
-        char detail[128];
-        std::snprintf(detail, sizeof(detail), "%s demos %d run %d: %.3f", r.condition.c_str(),
-                      r.demos, r.run, r.metric);
-        progress.Advance(1, detail);
-      });
+  std::vector<experiments::RunResult> finished;  // the runner calls back one unit at a time
+  RunUnitsLocally(config, plan, out, config.jobs, [&](const experiments::UnitResult& u) {
+    finished.push_back(u.run);
+    experiments::WriteRunsSoFar(finished, out);
+    char detail[128];
+    std::snprintf(detail, sizeof(detail), "%s demos %d run %d: %.3f", u.run.condition.c_str(),
+                  u.run.demos, u.run.run, u.run.metric);
+    progress.Advance(1, detail);
+  });
   progress.Finish();
-
-  const std::vector<std::string> written = experiments::WriteExperimentOutputs(config, result, out);
-  PrintTable(experiments::Summarize(config, result), result);
-  std::printf("\nwall time %.1f s\n", result.wall_seconds);
-  for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
+  CollectSweep(out, true);
+  std::printf("\nwall time %.1f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
-// A world's defaults: the paper's protocol for that experiment.
-struct WorldDefaults {
-  int runs = 15;
-  int tests = 100;
-  std::vector<int> demos = {10};
-};
+}  // namespace
 
-void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::string& help,
-                     const WorldDefaults& defaults, const GlobalOptions& global) {
-  auto flags = std::make_shared<ExperimentFlags>();
+// The paper's protocol for each world is the defaults (DefaultsOf). The callback is the
+// caller's: the command line runs it; a sweep's unit only reads the flags back.
+CLI::App* AddWorldOptions(CLI::App& experiment, const std::string& world, const std::string& help,
+                          const std::shared_ptr<ExperimentFlags>& flags) {
+  const WorldDefaults defaults = DefaultsOf(world);
   flags->world = world;
   flags->runs = defaults.runs;
   flags->tests = defaults.tests;
@@ -303,6 +299,19 @@ void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::
   command->add_flag("--authors-recipe", flags->authors_recipe,
                     "start from the authors' recipe: mse-sample loss, weights 1/1.2/1.2, raw "
                     "targets, restarts (options given explicitly still apply)");
+  command->add_flag("--plan-only", flags->plan_only,
+                    "write the sweep's plan into --out and stop: its units are run by `recon "
+                    "experiment run-unit` (here or on a cluster) and gathered by `recon "
+                    "experiment collect`");
+  return command;
+}
+
+namespace {
+
+void AddWorldCommand(CLI::App& experiment, const std::string& world, const std::string& help,
+                     const GlobalOptions& global) {
+  auto flags = std::make_shared<ExperimentFlags>();
+  CLI::App* command = AddWorldOptions(experiment, world, help, flags);
   command->callback([flags, command, &global] { Run(*flags, *command, global); });
 }
 
@@ -312,20 +321,11 @@ void AddExperimentCommands(CLI::App& app, const GlobalOptions& global) {
   CLI::App* experiment =
       app.add_subcommand("experiment", "reproduce one of the paper's experiments");
   experiment->require_subcommand(1);
-  AddWorldCommand(*experiment, "dynamic2d",
-                  "Dynamic 2D: beacon placements and noise (paper Fig. 5)", {15, 100, {10}},
-                  global);
-  AddWorldCommand(*experiment, "static2d",
-                  "Static 2D: position/distance beacons with and without play (paper Fig. 4)",
-                  {20, 100, {10}}, global);
-  AddWorldCommand(*experiment, "bintransfer",
-                  "Bin transfer with the simulated UR5: action error against the expert (paper "
-                  "Fig. 4, right)",
-                  {20, 110, {10}}, global);
-  AddWorldCommand(*experiment, "tabletop",
-                  "Tabletop with the simulated UR5 and camera: toast to plate, beacons removed "
-                  "at test (paper Sec. V)",
-                  {3, 20, {4, 6}}, global);
+  // What each world's experiment is, and the paper's protocol for it.
+  for (const std::string& world : ExperimentWorlds()) {
+    AddWorldCommand(*experiment, world, ExperimentHelp(world), global);
+  }
+  AddSweepCommands(*experiment, global);
 }
 
 }  // namespace recon::cli

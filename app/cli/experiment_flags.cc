@@ -21,6 +21,34 @@
 
 namespace recon::cli {
 
+const std::vector<std::string>& ExperimentWorlds() {
+  static const std::vector<std::string> worlds = {"dynamic2d", "static2d", "bintransfer",
+                                                  "tabletop"};
+  return worlds;
+}
+
+WorldDefaults DefaultsOf(const std::string& world) {
+  if (world == "static2d") return {20, 100, {10}};
+  if (world == "bintransfer") return {20, 110, {10}};
+  if (world == "tabletop") return {3, 20, {4, 6}};
+  return {15, 100, {10}};  // dynamic2d
+}
+
+std::string ExperimentHelp(const std::string& world) {
+  if (world == "static2d") {
+    return "Static 2D: position/distance beacons with and without play (paper Fig. 4)";
+  }
+  if (world == "bintransfer") {
+    return "Bin transfer with the simulated UR5: action error against the expert (paper Fig. 4, "
+           "right)";
+  }
+  if (world == "tabletop") {
+    return "Tabletop with the simulated UR5 and camera: toast to plate, beacons removed at test "
+           "(paper Sec. V)";
+  }
+  return "Dynamic 2D: beacon placements and noise (paper Fig. 5)";
+}
+
 std::string DefaultOutDir(const std::string& world) {
   char stamp[32];
   const std::time_t now = std::time(nullptr);

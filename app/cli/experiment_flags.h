@@ -23,6 +23,7 @@ struct ExperimentFlags {
   uint64_t seed = 1;
   std::string out;
   bool force = false;
+  bool plan_only = false;  ///< write the sweep's plan and stop
   int jobs = 0;
   std::string loss = "nll";
   std::string backend = "fused";
@@ -62,6 +63,20 @@ struct ExperimentFlags {
   bool spatial_softmax = false;     ///< only when --spatial-softmax / --no-... was given
   bool standardize_inputs = false;  ///< likewise
 };
+
+/// A world's experiment defaults: the paper's protocol for it.
+struct WorldDefaults {
+  int runs = 15;
+  int tests = 100;
+  std::vector<int> demos = {10};
+};
+
+/// The worlds `recon experiment` runs, in the order `--help` lists them.
+const std::vector<std::string>& ExperimentWorlds();
+/// The protocol of `world` (one of ExperimentWorlds()).
+WorldDefaults DefaultsOf(const std::string& world);
+/// What `world`'s experiment is, for `--help`.
+std::string ExperimentHelp(const std::string& world);
 
 /// out/<world>-<local date and time>: where an experiment goes without --out.
 std::string DefaultOutDir(const std::string& world);

@@ -8,9 +8,21 @@
 
 namespace recon::cli {
 
+namespace {
+
+std::vector<std::string>& Arguments() {
+  static std::vector<std::string> arguments;
+  return arguments;
+}
+
+}  // namespace
+
+const std::vector<std::string>& CommandLine() { return Arguments(); }
+
 int RunMain(CLI::App& app, int argc, char** argv, const char* program,
             const std::function<void()>& run) {
   InstallCrashReport(program);
+  Arguments().assign(argv + (argc > 0 ? 1 : 0), argv + argc);
   try {
     app.parse(argc, argv);
     if (run) run();

@@ -2,6 +2,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace recon::cli {
 
@@ -11,5 +13,9 @@ namespace recon::cli {
 /// saved is touched), 1 for anything else ("internal error").
 int RunMain(CLI::App& app, int argc, char** argv, const char* program,
             const std::function<void()>& run = {});
+
+/// The command line RunMain was given, after the program's name (for commands that keep how
+/// they were asked for, e.g. an experiment's plan).
+const std::vector<std::string>& CommandLine();
 
 }  // namespace recon::cli

@@ -28,12 +28,6 @@ constexpr uint64_t kDemoNoiseStream = 4000;
 // Loss curves are averaged over windows so that a figure shows about this many points.
 constexpr int kLossCurvePoints = 120;
 
-struct Task {
-  int demos;
-  size_t condition;
-  int run;
-};
-
 }  // namespace
 
 int TrainSteps(const ExperimentConfig& config, const Condition& condition) {
@@ -125,7 +119,7 @@ uint64_t TestScenarioSeed(uint64_t seed, int index) {
 namespace {
 
 /// Trains and evaluates one (condition, demos, run). Thread-safe: touches only its own objects.
-RunResult RunOne(const ExperimentConfig& config, const Task& task,
+RunResult RunOne(const ExperimentConfig& config, const ExperimentUnit& task,
                  const std::vector<uint64_t>& test_seeds, LossCurve* curve,
                  const std::atomic<bool>* cancel) {
   const Condition& condition = config.conditions[task.condition];
@@ -219,70 +213,105 @@ RunResult RunOne(const ExperimentConfig& config, const Task& task,
 
 }  // namespace
 
+std::vector<ExperimentUnit> PlanUnits(const ExperimentConfig& config) {
+  std::vector<ExperimentUnit> units;
+  for (int run = 0; run < config.runs; ++run) {
+    for (int demos : config.demos) {
+      for (size_t c = 0; c < config.conditions.size(); ++c) {
+        units.push_back({static_cast<int>(units.size()), demos, c, run});
+      }
+    }
+  }
+  return units;
+}
+
+UnitResult RunUnit(const ExperimentConfig& config, const ExperimentUnit& unit,
+                   const std::atomic<bool>* cancel) {
+  std::vector<uint64_t> test_seeds;
+  for (int i = 0; i < config.tests; ++i) test_seeds.push_back(TestScenarioSeed(config.seed, i));
+  UnitResult out;
+  out.unit = unit;
+  LossCurve curve;
+  out.run = RunOne(config, unit, test_seeds, unit.run == 0 ? &curve : nullptr, cancel);
+  if (unit.run == 0) out.curve = std::move(curve);
+  return out;
+}
+
+ExperimentResult DescribeExperiment(const ExperimentConfig& config) {
+  std::vector<uint64_t> test_seeds;
+  for (int i = 0; i < config.tests; ++i) test_seeds.push_back(TestScenarioSeed(config.seed, i));
+  const WorldMaker make_world = [&] {
+    return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
+  };
+  const std::unique_ptr<worlds::World> probe = make_world();
+  ExperimentResult out;
+  out.metric_name = probe->MetricName();
+  out.higher_is_better = probe->HigherIsBetter();
+  // When the expert drives (action scoring), success says nothing about the policy.
+  out.has_success = probe->HasSuccess() && !probe->ScoresActions();
+  out.metric_key = probe->MetricKey();
+  out.step_seconds = probe->StepSeconds();
+  out.episode_length = probe->EpisodeLength();
+  out.play_per_scenario =
+      config.play_per_scenario >= 0 ? config.play_per_scenario : probe->PlaySamplesPerScenario();
+  const std::vector<ScenarioOutcome> expert = EvaluateExpert(make_world, test_seeds);
+  out.expert_metric = Mean(Metrics(expert));
+  out.expert_success_rate = SuccessRate(expert);
+  return out;
+}
+
+ExperimentResult AssembleExperiment(const ExperimentConfig& config, ExperimentResult described,
+                                    const std::vector<UnitResult>& units) {
+  ExperimentResult out = std::move(described);
+  // Report in (demos, condition, run) order regardless of which unit finished first.
+  for (int demos : config.demos) {
+    for (size_t c = 0; c < config.conditions.size(); ++c) {
+      std::vector<const UnitResult*> runs;
+      for (const UnitResult& u : units) {
+        if (u.unit.demos == demos && u.unit.condition == c) {
+          runs.push_back(&u);
+        }
+      }
+      std::sort(runs.begin(), runs.end(),
+                [](const UnitResult* a, const UnitResult* b) { return a->unit.run < b->unit.run; });
+      LossCurve curve;
+      for (const UnitResult* u : runs) {
+        out.runs.push_back(u->run);
+        out.runs.back().has_success = out.has_success;
+        if (u->curve) curve = *u->curve;
+      }
+      out.loss_curves.push_back(std::move(curve));
+    }
+  }
+  return out;
+}
+
 ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver& on_run,
                                const std::atomic<bool>* cancel) {
   ValidateExperimentConfig(config);
   const auto start = std::chrono::steady_clock::now();
-
-  std::vector<uint64_t> test_seeds;
-  for (int i = 0; i < config.tests; ++i) test_seeds.push_back(TestScenarioSeed(config.seed, i));
-
-  ExperimentResult out;
-  {
-    const WorldMaker make_world = [&] {
-      return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
-    };
-    const std::unique_ptr<worlds::World> probe = make_world();
-    out.metric_name = probe->MetricName();
-    out.higher_is_better = probe->HigherIsBetter();
-    // When the expert drives (action scoring), success says nothing about the policy.
-    out.has_success = probe->HasSuccess() && !probe->ScoresActions();
-    out.metric_key = probe->MetricKey();
-    out.step_seconds = probe->StepSeconds();
-    out.episode_length = probe->EpisodeLength();
-    out.play_per_scenario =
-        config.play_per_scenario >= 0 ? config.play_per_scenario : probe->PlaySamplesPerScenario();
-    const std::vector<ScenarioOutcome> expert = EvaluateExpert(make_world, test_seeds);
-    out.expert_metric = Mean(Metrics(expert));
-    out.expert_success_rate = SuccessRate(expert);
-  }
-
-  // Run-major order: if the sweep is stopped early, every condition has the same runs done.
-  std::vector<Task> tasks;
-  for (int run = 0; run < config.runs; ++run) {
-    for (int demos : config.demos) {
-      for (size_t c = 0; c < config.conditions.size(); ++c) tasks.push_back({demos, c, run});
-    }
-  }
-
-  std::vector<RunResult> results(tasks.size());
-  std::vector<LossCurve> curves(config.demos.size() * config.conditions.size());
+  ExperimentResult described = DescribeExperiment(config);
+  const std::vector<ExperimentUnit> units = PlanUnits(config);
+  std::vector<UnitResult> results(units.size());
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr first_error;
   std::mutex mutex;
-
   auto worker = [&] {
     while (!failed) {
       const size_t i = next++;
-      if (i >= tasks.size()) return;
+      if (i >= units.size()) return;
       if (cancel != nullptr && *cancel) {
         failed = true;
         std::lock_guard<std::mutex> lock(mutex);
         if (!first_error) first_error = std::make_exception_ptr(UserError("cancelled"));
         return;
       }
-      const Task& task = tasks[i];
-      size_t demos_index = 0;
-      while (config.demos[demos_index] != task.demos) ++demos_index;
-      LossCurve* curve = task.run == 0
-                             ? &curves[demos_index * config.conditions.size() + task.condition]
-                             : nullptr;
       try {
-        results[i] = RunOne(config, task, test_seeds, curve, cancel);
-        results[i].has_success = out.has_success;
+        results[i] = RunUnit(config, units[i], cancel);
+        results[i].run.has_success = described.has_success;
         std::lock_guard<std::mutex> lock(mutex);
-        if (on_run) on_run(results[i]);
+        if (on_run) on_run(results[i].run);
       } catch (...) {
         failed = true;
         std::lock_guard<std::mutex> lock(mutex);
@@ -290,23 +319,13 @@ ExperimentResult RunExperiment(const ExperimentConfig& config, const RunObserver
       }
     }
   };
-  const int jobs = std::min<int>(config.jobs, static_cast<int>(tasks.size()));
+  const int jobs = std::min<int>(config.jobs, static_cast<int>(units.size()));
   std::vector<std::thread> threads;
   for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
   for (std::thread& t : threads) t.join();
   if (first_error) std::rethrow_exception(first_error);
 
-  // Report in (demos, condition, run) order regardless of which worker finished first.
-  for (size_t d = 0; d < config.demos.size(); ++d) {
-    for (size_t c = 0; c < config.conditions.size(); ++c) {
-      for (size_t i = 0; i < tasks.size(); ++i) {
-        if (tasks[i].demos == config.demos[d] && tasks[i].condition == c) {
-          out.runs.push_back(results[i]);
-        }
-      }
-    }
-  }
-  out.loss_curves = std::move(curves);
+  ExperimentResult out = AssembleExperiment(config, std::move(described), results);
   out.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,43 @@ int TrainSteps(const ExperimentConfig& config, const Condition& condition);
 /// Checks the configuration as far as it can without training: counts, steps, and for every
 /// RECON condition that the feature size k exceeds its beacon dimension d. Throws UserError.
 void ValidateExperimentConfig(const ExperimentConfig& config);
+
+/// One independent piece of an experiment: one training run of one condition at one
+/// demonstration count, trained and rolled out on its own (on this machine, or as a task of a
+/// cluster's job array: sweep_plan.h).
+struct ExperimentUnit {
+  int index = 0;  ///< in the plan's order
+  int demos = 0;
+  size_t condition = 0;  ///< into ExperimentConfig::conditions
+  int run = 0;
+};
+
+/// Every unit of `config`, run-major (run, then demos, then condition): stopped early, every
+/// condition has the same runs done.
+std::vector<ExperimentUnit> PlanUnits(const ExperimentConfig& config);
+
+/// What a unit gives: its run, and for run 0 the condition's action loss over training.
+struct UnitResult {
+  ExperimentUnit unit;
+  RunResult run;
+  std::optional<LossCurve> curve;
+};
+
+/// Trains and rolls out one unit. The same bytes of result whichever machine or order runs it
+/// (on the same CPU kind), but for run.train_seconds. UserError "cancelled" when *cancel
+/// becomes true.
+UnitResult RunUnit(const ExperimentConfig& config, const ExperimentUnit& unit,
+                   const std::atomic<bool>* cancel = nullptr);
+
+/// What an experiment's table says of its world and expert, before any unit: the metric, the
+/// expert's score on the test scenarios, the episode's length... (ExperimentResult without runs,
+/// curves or wall time).
+ExperimentResult DescribeExperiment(const ExperimentConfig& config);
+
+/// `described` with the units' runs in (demos, condition, run) order and run 0's curves, in the
+/// order RunExperiment returns them. Units may be missing (a sweep collected part way).
+ExperimentResult AssembleExperiment(const ExperimentConfig& config, ExperimentResult described,
+                                    const std::vector<UnitResult>& units);
 
 /// Called once per finished run (from worker threads, serialised by the runner).
 using RunObserver = std::function<void(const RunResult&)>;

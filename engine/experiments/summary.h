@@ -31,7 +31,8 @@ struct ConditionSummary {
 std::vector<ConditionSummary> Summarize(const ExperimentConfig& config,
                                         const ExperimentResult& result);
 
-/// Writes, atomically, into `dir`: results.csv (one row per run and condition), summary.json,
+/// Writes, atomically, into `dir`: results.csv (one row per run and condition, the same bytes on
+/// any machine for the same runs), timing.csv (how long each trained), summary.json,
 /// `<world>.png` and `.svg` (bars with standard-error whiskers, like the paper's figures),
 /// losses.png (the action loss of run 0 of each condition), and, when several demo counts were
 /// run, data_efficiency.png. Returns the paths written, figure first.
