@@ -12,6 +12,7 @@
 #include "app/cli/option_checks.h"
 #include "app/cli/output_path.h"
 #include "app/cli/run_main.h"
+#include "app/cli/slurm_commands.h"
 #include "app/cli/sweep_commands.h"
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -326,6 +327,7 @@ void AddExperimentCommands(CLI::App& app, const GlobalOptions& global) {
     AddWorldCommand(*experiment, world, ExperimentHelp(world), global);
   }
   AddSweepCommands(*experiment, global);
+  AddSlurmCommands(*experiment, global);
 }
 
 }  // namespace recon::cli

@@ -1,0 +1,249 @@
+#include "app/cli/slurm_commands.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/cli/option_checks.h"
+#include "app/cli/subprocess.h"
+#include "app/cli/sweep_commands.h"
+#include "engine/core/digest.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
+#include "engine/experiments/sweep_plan.h"
+
+namespace recon::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+struct SubmitFlags {
+  std::string dir;
+  bool slurm = false;
+  std::string partition, time;
+  int cpus_per_task = 1;
+  int max_parallel = 0;  ///< 0: as many as the cluster gives
+  bool dry_run = false;
+};
+
+/// The job name of the sweep in `dir`: every task of every submission carries it, so the queue
+/// is asked for this sweep's tasks alone.
+std::string JobName(const std::string& dir) {
+  return "recon-" + DigestHex(Fnv1a(fs::absolute(dir).lexically_normal().string())).substr(0, 8);
+}
+
+std::string Quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// "0-3,5,7-9": the indices (sorted) as Slurm's --array takes them.
+std::string ArraySpec(const std::vector<int>& indices) {
+  std::string spec;
+  for (size_t i = 0; i < indices.size();) {
+    size_t j = i;
+    while (j + 1 < indices.size() && indices[j + 1] == indices[j] + 1) ++j;
+    spec += (spec.empty() ? "" : ",") + std::to_string(indices[i]);
+    if (j > i) spec += "-" + std::to_string(indices[j]);
+    i = j + 1;
+  }
+  return spec;
+}
+
+/// Unit index -> its task's state letters ("PD", "R", "CG", ...) for the tasks of the sweep in
+/// `dir` still in the queue; none when the queue cannot be read, with `why` said.
+std::optional<std::map<int, std::string>> QueuedUnits(const std::string& dir, std::string& why) {
+  if (!OnPath("squeue")) {
+    why = "no squeue on PATH";
+    return std::nullopt;
+  }
+  const ProgramResult r = RunProgram({"squeue", "-h", "-r", "-n", JobName(dir), "-o", "%i %t"});
+  if (r.exit_code != 0) {
+    why = "squeue failed: " + r.err.substr(0, r.err.find('\n'));
+    return std::nullopt;
+  }
+  std::map<int, std::string> queued;
+  std::istringstream lines(r.out);
+  for (std::string id, state; lines >> id >> state;) {
+    const size_t underscore = id.find('_');
+    if (underscore == std::string::npos) continue;
+    try {
+      queued[std::stoi(id.substr(underscore + 1))] = state;
+    } catch (const std::exception&) {
+      // "123_[4-7]": tasks not yet split out of a pending array are read from the range.
+      int first = 0, last = 0;
+      if (std::sscanf(id.c_str() + underscore + 1, "[%d-%d", &first, &last) == 2) {
+        for (int k = first; k <= last; ++k) queued[k] = state;
+      }
+    }
+  }
+  return queued;
+}
+
+/// The units of the plan in `dir` that are done (a whole unit file), in plan order.
+std::vector<bool> DoneUnits(const std::string& dir, size_t count) {
+  std::vector<bool> done(count, false);
+  for (size_t k = 0; k < count; ++k) {
+    try {
+      done[k] = experiments::ReadUnitResult(dir, static_cast<int>(k)).has_value();
+    } catch (const UserError&) {
+      done[k] = false;  // damaged: to be run again
+    }
+  }
+  return done;
+}
+
+std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
+  const std::string dir = fs::absolute(flags.dir).lexically_normal().string();
+  const std::string recon = fs::read_symlink("/proc/self/exe").string();
+  std::string script = "#!/bin/bash\n# A RECON Studio sweep's units as a Slurm job array "
+                       "(recon experiment submit).\n";
+  script += "#SBATCH --job-name=" + JobName(flags.dir) + "\n";
+  script += "#SBATCH --array=" + ArraySpec(units) +
+            (flags.max_parallel > 0 ? "%" + std::to_string(flags.max_parallel) : "") + "\n";
+  script += "#SBATCH --cpus-per-task=" + std::to_string(flags.cpus_per_task) + "\n";
+  script += "#SBATCH --output=" + dir + "/slurm/task_%A_%a.log\n";
+  if (!flags.time.empty()) script += "#SBATCH --time=" + flags.time + "\n";
+  if (!flags.partition.empty()) script += "#SBATCH --partition=" + flags.partition + "\n";
+  script += "set -eu\n";
+  script += "exec " + Quoted(recon) + " --threads " + std::to_string(flags.cpus_per_task) +
+            " experiment run-unit " + Quoted(dir) + " --unit \"$SLURM_ARRAY_TASK_ID\"\n";
+  return script;
+}
+
+void Submit(const SubmitFlags& flags) {
+  if (!flags.slurm) throw UserError("submit needs a scheduler: --slurm");
+  if (!flags.dry_run && !OnPath("sbatch")) {
+    throw UserError("no sbatch on PATH: submit from a Slurm login node (or start one here with "
+                    "scripts/slurm-local up DIR and export SLURM_CONF); nothing was submitted");
+  }
+  const experiments::SweepPlan plan = experiments::ReadSweepPlan(flags.dir);
+  ConfigOfArguments(plan.arguments);  // a plan this binary can run
+  const std::vector<bool> done = DoneUnits(flags.dir, plan.units.size());
+  std::string why;
+  const std::optional<std::map<int, std::string>> queued = QueuedUnits(flags.dir, why);
+  if (!queued && !flags.dry_run) {
+    // Without the queue, units still running would be submitted twice.
+    throw UserError("cannot read the cluster's queue (" + why + "); nothing was submitted");
+  }
+  std::vector<int> todo;
+  int done_count = 0;
+  for (size_t k = 0; k < plan.units.size(); ++k) {
+    if (done[k]) {
+      ++done_count;
+    } else if (!queued || !queued->count(static_cast<int>(k))) {
+      todo.push_back(static_cast<int>(k));
+    }
+  }
+  if (todo.empty()) {
+    std::printf("nothing to submit: %d of %zu units done, the rest queued (`recon experiment "
+                "status %s`)\n",
+                done_count, plan.units.size(), flags.dir.c_str());
+    return;
+  }
+  const std::string script = ArrayScript(flags, todo);
+  if (flags.dry_run) {
+    std::printf("%s", script.c_str());
+    return;
+  }
+  const fs::path slurm = fs::path(flags.dir) / "slurm";
+  EnsureWritableDirectory(slurm.string());
+  int submission = 1;
+  while (fs::exists(slurm / ("array_" + std::to_string(submission) + ".sbatch"))) ++submission;
+  const fs::path script_path = slurm / ("array_" + std::to_string(submission) + ".sbatch");
+  WriteFileAtomically(script_path.string(), script);
+  const ProgramResult r = RunProgram({"sbatch", "--parsable", script_path.string()});
+  if (r.exit_code != 0) {
+    std::error_code ignored;
+    fs::remove(script_path, ignored);
+    throw UserError("the cluster refused the job (sbatch exit " + std::to_string(r.exit_code) +
+                    "): " + r.err + "nothing was submitted");
+  }
+  const std::string job = r.out.substr(0, r.out.find_first_of(";\n"));
+  // The submissions so far, for people and for `status`.
+  const fs::path jobs_path = slurm / "jobs.json";
+  json jobs = json::array();
+  if (fs::exists(jobs_path)) {
+    try {
+      jobs = json::parse(std::ifstream(jobs_path));
+    } catch (const json::exception&) {
+      jobs = json::array();  // a damaged list of submissions is only lost history
+    }
+  }
+  jobs.push_back({{"job", job}, {"units", todo}, {"script", script_path.filename().string()}});
+  WriteFileAtomically(jobs_path.string(), jobs.dump(1) + "\n");
+  std::printf("submitted job %s: %zu unit(s) (%s) as an array%s; follow it with `recon "
+              "experiment status %s`, then `recon experiment collect %s`\n",
+              job.c_str(), todo.size(), ArraySpec(todo).c_str(),
+              done_count > 0 ? (" (" + std::to_string(done_count) + " done before)").c_str() : "",
+              flags.dir.c_str(), flags.dir.c_str());
+}
+
+void Status(const std::string& dir) {
+  const experiments::SweepPlan plan = experiments::ReadSweepPlan(dir);
+  const std::vector<bool> done = DoneUnits(dir, plan.units.size());
+  std::string why;
+  const std::optional<std::map<int, std::string>> queued = QueuedUnits(dir, why);
+  std::vector<int> running, pending, missing;
+  int done_count = 0;
+  for (size_t k = 0; k < plan.units.size(); ++k) {
+    const int unit = static_cast<int>(k);
+    if (done[k]) {
+      ++done_count;
+    } else if (queued && queued->count(unit)) {
+      (queued->at(unit) == "PD" ? pending : running).push_back(unit);
+    } else {
+      missing.push_back(unit);
+    }
+  }
+  std::printf("%zu units: %d done, %zu running, %zu pending, %zu missing%s\n", plan.units.size(),
+              done_count, running.size(), pending.size(), missing.size(),
+              queued ? "" : (" (" + why + ": from the unit files alone)").c_str());
+  if (!running.empty()) std::printf("running: %s\n", ArraySpec(running).c_str());
+  if (!pending.empty()) std::printf("pending: %s\n", ArraySpec(pending).c_str());
+  if (!missing.empty()) {
+    std::printf("missing (not done and not queued: never submitted, failed, killed or "
+                "preempted): %s; `recon experiment submit %s --slurm` runs them\n",
+                ArraySpec(missing).c_str(), dir.c_str());
+  }
+}
+
+}  // namespace
+
+void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global) {
+  (void)global;  // the array's tasks set their own threads (--cpus-per-task)
+  auto flags = std::make_shared<SubmitFlags>();
+  CLI::App* submit = experiment.add_subcommand(
+      "submit", "submit a planned sweep's units that are neither done nor queued as one Slurm "
+                "job array (DIR must be on a file system every node sees)");
+  submit->add_option("dir", flags->dir, "the sweep's folder (its plan.json)")->required();
+  submit->add_flag("--slurm", flags->slurm, "submit to Slurm (sbatch)")->required();
+  submit->add_option("--partition", flags->partition, "the partition (default: the cluster's)");
+  submit->add_option("--time", flags->time, "each task's time limit, as sbatch takes it");
+  submit->add_option("--cpus-per-task", flags->cpus_per_task, "cores per unit (its threads)")
+      ->check(WholeBetween(1, 256))
+      ->capture_default_str();
+  submit->add_option("--max-parallel", flags->max_parallel, "units running at once, at most")
+      ->check(WholeBetween(1, 100000));
+  submit->add_flag("--dry-run", flags->dry_run, "print the sbatch script, submit nothing");
+  submit->callback([flags] { Submit(*flags); });
+
+  auto status_dir = std::make_shared<std::string>();
+  CLI::App* status = experiment.add_subcommand(
+      "status", "how far a sweep is: units done (their files), running and pending (squeue), "
+                "and missing");
+  status->add_option("dir", *status_dir, "the sweep's folder (its plan.json)")->required();
+  status->callback([status_dir] { Status(*status_dir); });
+}
+
+}  // namespace recon::cli

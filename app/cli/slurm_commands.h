@@ -1,0 +1,21 @@
+#pragma once
+
+// A planned sweep (sweep_commands.h) on a Slurm cluster: its units as one job array, and what
+// the cluster and the unit files say of them.
+//
+//   recon experiment submit DIR --slurm [--partition P] [--time T] [--cpus-per-task N]
+//                               [--max-parallel M] [--dry-run]
+//   recon experiment status DIR
+//
+// Submitting again submits only the units neither done nor queued: the missing and the failed.
+
+#include <CLI/CLI.hpp>
+
+#include "app/cli/experiment_command.h"
+
+namespace recon::cli {
+
+/// Adds `recon experiment submit` and `recon experiment status`.
+void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global);
+
+}  // namespace recon::cli
