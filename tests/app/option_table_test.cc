@@ -77,6 +77,8 @@ std::vector<OptionCase> NumericOptions() {
                            (out / "c.yaml").string() + " --tags " + (out / "t.json").string() + " ";
   const std::string robot = "robot status --host 127.0.0.1 ";
   const std::string twin = "twin up " + (out / "twin").string() + " ";
+  const std::string submit =
+      "experiment submit " + (out / "missing_sweep").string() + " --slurm --dry-run ";
   std::vector<OptionCase> cases;
   for (const char* world : {"dynamic2d", "static2d", "bintransfer", "tabletop"}) {
     const std::string exp =
@@ -110,6 +112,8 @@ std::vector<OptionCase> NumericOptions() {
       {eval + "--probe ", "--grid", true},
       {eval + "--probe ", "--readout-scenes", true},
       {eval + "--saliency demo_0 ", "--frames", true},
+      {submit, "--cpus-per-task", true},
+      {submit, "--max-parallel", true},
       {record, "--demos", true},
       {record, "--play", true},
       {record, "--noise", false},
