@@ -20,12 +20,12 @@
 
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/rng.h"
+#include "engine/experiments/evaluation.h"
 #include "engine/experiments/recipe.h"
 #include "engine/learn/architecture.h"
 #include "engine/learn/policy_impl.h"
 #include "engine/learn/target_scaling.h"
 #include "engine/probe/distractor_probe.h"
-#include "engine/experiments/evaluation.h"
 #include "engine/probe/feature_readout.h"
 #include "engine/probe/outcome_probe.h"
 #include "engine/probe/saliency.h"
@@ -53,7 +53,8 @@ learn::Policy RecipePolicy(const DataSpec& spec, learn::Method method, uint64_t 
 
 ProbeSubject Subject(const learn::Policy& policy, const std::string& method) {
   ProbeSubject subject;
-  subject.rollouts = [policy](uint64_t seed, size_t copies, const ProbeSubject::Arrangement& arrange) {
+  subject.rollouts = [policy](uint64_t seed, size_t copies,
+                              const ProbeSubject::Arrangement& arrange) {
     const std::vector<experiments::ScenarioOutcome> outcomes = experiments::EvaluatePolicy(
         [] { return std::unique_ptr<worlds::World>(MakeTabletop()); }, policy,
         std::vector<uint64_t>(copies, seed), false, {},

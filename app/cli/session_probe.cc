@@ -14,8 +14,8 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/rng.h"
-#include "engine/learn/learner.h"
 #include "engine/experiments/evaluation.h"
+#include "engine/learn/learner.h"
 #include "engine/probe/feature_readout.h"
 #include "engine/probe/outcome_probe.h"
 #include "engine/probe/recorded_readout.h"
@@ -220,11 +220,10 @@ store::ProbeSummary ProbeSession(const store::Session& session, const SessionPro
   const store::SessionManifest& manifest = session.manifest();
   const bool simulated = manifest.cell == "simulated";
   if (!simulated && (!options.objects.empty() || options.outcome)) {
-    throw UserError("moving objects (" +
-                    std::string(options.outcome ? "whole rollouts" : "--object") +
-                    ") needs the simulated cell, and " + session.dir() + " was taught on a " +
-                    manifest.cell +
-                    " cell; without them its recorded frames are read out; nothing was written");
+    throw UserError(
+        "moving objects (" + std::string(options.outcome ? "whole rollouts" : "--object") +
+        ") needs the simulated cell, and " + session.dir() + " was taught on a " + manifest.cell +
+        " cell; without them its recorded frames are read out; nothing was written");
   }
   if (simulated &&
       (options.readout_scenes < kMinReadoutScenes || options.readout_scenes > kMaxReadoutScenes)) {

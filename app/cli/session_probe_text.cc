@@ -59,8 +59,9 @@ std::string ProbeNote(const store::ProbeSummary& summary) {
                 summary.readout_scenes, static_cast<unsigned long long>(summary.readout_seed));
   std::string text = note;
   if (HasOutcomes(summary)) {
-    text += " Whole rollouts from each place that leaves the task doable (the arm reaches "
-            "every grasp and release point).";
+    text +=
+        " Whole rollouts from each place that leaves the task doable (the arm reaches "
+        "every grasp and release point).";
   }
   return text;
 }
@@ -108,9 +109,10 @@ report::HeatMap ProbeOutcomeMap(const store::ProbeSummary& summary, const std::s
   for (double v : o.outcome) places += std::isfinite(v) ? 1 : 0;
   report::HeatMap map = GridMap(summary, object);
   map.title = probed.label + ": whole rollouts, the " + object + " moved";
-  map.subtitle = "succeeded from " + Percent(o.success_rate.value_or(0)) + " of " +
-                 std::to_string(places) + " places (as the scene was: " +
-                 (o.home_succeeded.value_or(false) ? "success" : "failure") + ")";
+  map.subtitle =
+      "succeeded from " + Percent(o.success_rate.value_or(0)) + " of " + std::to_string(places) +
+      " places (as the scene was: " + (o.home_succeeded.value_or(false) ? "success" : "failure") +
+      ")";
   map.value_label = "succeeded (1) or failed (0)";
   map.values = o.outcome;
   map.scale_max = 1;

@@ -106,8 +106,9 @@ std::vector<bool> DoneUnits(const std::string& dir, size_t count) {
 std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
   const std::string dir = fs::absolute(flags.dir).lexically_normal().string();
   const std::string recon = fs::read_symlink("/proc/self/exe").string();
-  std::string script = "#!/bin/bash\n# A RECON Studio sweep's units as a Slurm job array "
-                       "(recon experiment submit).\n";
+  std::string script =
+      "#!/bin/bash\n# A RECON Studio sweep's units as a Slurm job array "
+      "(recon experiment submit).\n";
   script += "#SBATCH --job-name=" + JobName(flags.dir) + "\n";
   script += "#SBATCH --array=" + ArraySpec(units) +
             (flags.max_parallel > 0 ? "%" + std::to_string(flags.max_parallel) : "") + "\n";
@@ -124,8 +125,9 @@ std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units)
 void Submit(const SubmitFlags& flags) {
   if (!flags.slurm) throw UserError("submit needs a scheduler: --slurm");
   if (!flags.dry_run && !OnPath("sbatch")) {
-    throw UserError("no sbatch on PATH: submit from a Slurm login node (or start one here with "
-                    "scripts/slurm-local up DIR and export SLURM_CONF); nothing was submitted");
+    throw UserError(
+        "no sbatch on PATH: submit from a Slurm login node (or start one here with "
+        "scripts/slurm-local up DIR and export SLURM_CONF); nothing was submitted");
   }
   const experiments::SweepPlan plan = experiments::ReadSweepPlan(flags.dir);
   ConfigOfArguments(plan.arguments);  // a plan this binary can run
@@ -146,9 +148,10 @@ void Submit(const SubmitFlags& flags) {
     }
   }
   if (todo.empty()) {
-    std::printf("nothing to submit: %d of %zu units done, the rest queued (`recon experiment "
-                "status %s`)\n",
-                done_count, plan.units.size(), flags.dir.c_str());
+    std::printf(
+        "nothing to submit: %d of %zu units done, the rest queued (`recon experiment "
+        "status %s`)\n",
+        done_count, plan.units.size(), flags.dir.c_str());
     return;
   }
   const std::string script = ArrayScript(flags, todo);
@@ -182,11 +185,12 @@ void Submit(const SubmitFlags& flags) {
   }
   jobs.push_back({{"job", job}, {"units", todo}, {"script", script_path.filename().string()}});
   WriteFileAtomically(jobs_path.string(), jobs.dump(1) + "\n");
-  std::printf("submitted job %s: %zu unit(s) (%s) as an array%s; follow it with `recon "
-              "experiment status %s`, then `recon experiment collect %s`\n",
-              job.c_str(), todo.size(), ArraySpec(todo).c_str(),
-              done_count > 0 ? (" (" + std::to_string(done_count) + " done before)").c_str() : "",
-              flags.dir.c_str(), flags.dir.c_str());
+  std::printf(
+      "submitted job %s: %zu unit(s) (%s) as an array%s; follow it with `recon "
+      "experiment status %s`, then `recon experiment collect %s`\n",
+      job.c_str(), todo.size(), ArraySpec(todo).c_str(),
+      done_count > 0 ? (" (" + std::to_string(done_count) + " done before)").c_str() : "",
+      flags.dir.c_str(), flags.dir.c_str());
 }
 
 void Status(const std::string& dir) {
@@ -212,9 +216,10 @@ void Status(const std::string& dir) {
   if (!running.empty()) std::printf("running: %s\n", ArraySpec(running).c_str());
   if (!pending.empty()) std::printf("pending: %s\n", ArraySpec(pending).c_str());
   if (!missing.empty()) {
-    std::printf("missing (not done and not queued: never submitted, failed, killed or "
-                "preempted): %s; `recon experiment submit %s --slurm` runs them\n",
-                ArraySpec(missing).c_str(), dir.c_str());
+    std::printf(
+        "missing (not done and not queued: never submitted, failed, killed or "
+        "preempted): %s; `recon experiment submit %s --slurm` runs them\n",
+        ArraySpec(missing).c_str(), dir.c_str());
   }
 }
 
@@ -224,8 +229,9 @@ void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global) {
   (void)global;  // the array's tasks set their own threads (--cpus-per-task)
   auto flags = std::make_shared<SubmitFlags>();
   CLI::App* submit = experiment.add_subcommand(
-      "submit", "submit a planned sweep's units that are neither done nor queued as one Slurm "
-                "job array (DIR must be on a file system every node sees)");
+      "submit",
+      "submit a planned sweep's units that are neither done nor queued as one Slurm "
+      "job array (DIR must be on a file system every node sees)");
   submit->add_option("dir", flags->dir, "the sweep's folder (its plan.json)")->required();
   submit->add_flag("--slurm", flags->slurm, "submit to Slurm (sbatch)")->required();
   submit->add_option("--partition", flags->partition, "the partition (default: the cluster's)");
@@ -240,8 +246,9 @@ void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global) {
 
   auto status_dir = std::make_shared<std::string>();
   CLI::App* status = experiment.add_subcommand(
-      "status", "how far a sweep is: units done (their files), running and pending (squeue), "
-                "and missing");
+      "status",
+      "how far a sweep is: units done (their files), running and pending (squeue), "
+      "and missing");
   status->add_option("dir", *status_dir, "the sweep's folder (its plan.json)")->required();
   status->callback([status_dir] { Status(*status_dir); });
 }

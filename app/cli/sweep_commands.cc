@@ -8,10 +8,11 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 
-#include "app/cli/option_checks.h"
 #include "engine/core/error.h"
 #include "engine/experiments/summary.h"
 #include "engine/learn/learner.h"
@@ -57,8 +58,10 @@ std::pair<experiments::SweepPlan, experiments::ExperimentConfig> OpenPlan(const 
   };
   if (units.size() != plan.units.size() ||
       !std::equal(units.begin(), units.end(), plan.units.begin(), same)) {
-    throw UserError(experiments::PlanPath(dir) + " lists other units than its arguments give "
-                    "with this recon (" + kMadeBy + "; the plan was made by " + plan.made_by +
+    throw UserError(experiments::PlanPath(dir) +
+                    " lists other units than its arguments give "
+                    "with this recon (" +
+                    kMadeBy + "; the plan was made by " + plan.made_by +
                     "): plan the sweep again with this binary");
   }
   return {std::move(plan), std::move(config)};
@@ -127,8 +130,8 @@ experiments::ExperimentConfig ConfigOfArguments(const std::vector<std::string>& 
 }
 
 experiments::SweepPlan PlanSweep(const experiments::ExperimentConfig& config,
-                                 const std::vector<std::string>& arguments,
-                                 const std::string& dir, bool force) {
+                                 const std::vector<std::string>& arguments, const std::string& dir,
+                                 bool force) {
   if (fs::exists(experiments::PlanPath(dir))) {
     std::optional<experiments::SweepPlan> existing;
     try {
@@ -221,8 +224,7 @@ std::vector<int> CollectSweep(const std::string& dir, bool print_table) {
   }
   const experiments::ExperimentResult result =
       experiments::AssembleExperiment(config, plan.described, done);
-  const std::vector<std::string> written =
-      experiments::WriteExperimentOutputs(config, result, dir);
+  const std::vector<std::string> written = experiments::WriteExperimentOutputs(config, result, dir);
   if (print_table) PrintTable(experiments::Summarize(config, result), result);
   for (const std::string& path : written) std::printf("wrote %s\n", path.c_str());
   return missing;
@@ -235,8 +237,9 @@ void AddSweepCommands(CLI::App& experiment, const GlobalOptions& global) {
   };
   auto unit_flags = std::make_shared<UnitFlags>();
   CLI::App* run_unit = experiment.add_subcommand(
-      "run-unit", "train and roll out units of a planned sweep (--plan-only), each result into "
-                  "DIR/units/ as it ends; a unit already done is left as it is");
+      "run-unit",
+      "train and roll out units of a planned sweep (--plan-only), each result into "
+      "DIR/units/ as it ends; a unit already done is left as it is");
   run_unit->add_option("dir", unit_flags->dir, "the sweep's folder (its plan.json)")->required();
   run_unit->add_option("--unit", unit_flags->units, "unit number K, or a range A-B (repeatable)")
       ->required()
@@ -265,16 +268,17 @@ void AddSweepCommands(CLI::App& experiment, const GlobalOptions& global) {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       experiments::WriteUnitResult(unit_flags->dir, result, seconds, host);
       std::printf("unit %d: %s, %d demos, run %d: metric %.4f (%.1f s; wrote %s)\n", k,
-                  result.run.condition.c_str(), result.run.demos, result.run.run,
-                  result.run.metric, seconds, experiments::UnitPath(unit_flags->dir, k).c_str());
+                  result.run.condition.c_str(), result.run.demos, result.run.run, result.run.metric,
+                  seconds, experiments::UnitPath(unit_flags->dir, k).c_str());
       std::fflush(stdout);
     }
   });
 
   auto collect_dir = std::make_shared<std::string>();
   CLI::App* collect = experiment.add_subcommand(
-      "collect", "gather a sweep's finished units into results.csv, summary.json and the "
-                 "figures, and say which units are missing");
+      "collect",
+      "gather a sweep's finished units into results.csv, summary.json and the "
+      "figures, and say which units are missing");
   collect->add_option("dir", *collect_dir, "the sweep's folder (its plan.json)")->required();
   collect->callback([collect_dir] {
     const std::vector<int> missing = CollectSweep(*collect_dir, true);
@@ -284,9 +288,10 @@ void AddSweepCommands(CLI::App& experiment, const GlobalOptions& global) {
     }
     std::string list;
     for (int k : missing) list += (list.empty() ? "" : ",") + std::to_string(k);
-    std::printf("%zu unit(s) missing: %s (run them with `recon experiment run-unit %s --unit K`)"
-                "\n",
-                missing.size(), list.c_str(), collect_dir->c_str());
+    std::printf(
+        "%zu unit(s) missing: %s (run them with `recon experiment run-unit %s --unit K`)"
+        "\n",
+        missing.size(), list.c_str(), collect_dir->c_str());
   });
 }
 

@@ -39,8 +39,8 @@ experiments::ExperimentConfig ConfigOfArguments(const std::vector<std::string>& 
 /// (the units done are kept: a killed local run resumes). UserError for another sweep's plan
 /// unless `force` (which removes its units).
 experiments::SweepPlan PlanSweep(const experiments::ExperimentConfig& config,
-                                 const std::vector<std::string>& arguments,
-                                 const std::string& dir, bool force);
+                                 const std::vector<std::string>& arguments, const std::string& dir,
+                                 bool force);
 
 /// Runs every unit of `plan` not done yet, `jobs` at a time, each result written as it ends;
 /// `on_done` sees each (serialised).

@@ -171,10 +171,13 @@ void RunProbe(const EvalFlags& flags) {
   const store::Session session = store::Session::Open(flags.session);
   if (session.manifest().cell != "simulated" && !flags.simulated_only.empty()) {
     std::string given;
-    for (const std::string& option : flags.simulated_only) given += (given.empty() ? "" : ", ") + option;
+    for (const std::string& option : flags.simulated_only)
+      given += (given.empty() ? "" : ", ") + option;
     throw UserError(given + ": " + session.dir() + " was taught on a " + session.manifest().cell +
                     " cell, which RECON Studio cannot simulate, so nothing can be moved or rolled "
-                    "out; without " + given + " its methods are read out on its recorded frames; "
+                    "out; without " +
+                    given +
+                    " its methods are read out on its recorded frames; "
                     "nothing was written");
   }
   SessionProbeOptions options;

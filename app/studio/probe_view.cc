@@ -52,7 +52,8 @@ ui::ProbeView BuildProbeView(const store::Session& session, const std::string& s
     const auto found = probed.objects.find(view.shown_object);
     if (found == probed.objects.end()) continue;
     if (!found->second.action_change.empty()) {
-      view.maps.push_back(MapOf(cli::ProbeHeatMap(*summary, method, view.shown_object), probed.label));
+      view.maps.push_back(
+          MapOf(cli::ProbeHeatMap(*summary, method, view.shown_object), probed.label));
     }
     if (!found->second.outcome.empty()) {
       view.outcome_maps.push_back(

@@ -51,10 +51,11 @@ void StudioCell::Apply(const ui::ShowEpisodeFrame& c) {
   if (!c.method.empty() && !trained(c.method)) {
     throw UserError(c.method + " is not trained: there is no saliency of it to show");
   }
-  episode_playback_.method = !c.method.empty()                        ? c.method
-                             : trained(episode_playback_.method)      ? episode_playback_.method
-                             : !episode_playback_.methods.empty() ? episode_playback_.methods[0].first
-                                                                      : "";
+  episode_playback_.method = !c.method.empty()                   ? c.method
+                             : trained(episode_playback_.method) ? episode_playback_.method
+                             : !episode_playback_.methods.empty()
+                                 ? episode_playback_.methods[0].first
+                                 : "";
   episode_playback_.frames = static_cast<int>(episode_frames_.y.size());
   episode_playback_.frame = std::clamp(c.frame, 0, std::max(0, episode_playback_.frames - 1));
   if (episode_playback_.frames > 0) DrawEpisodeFrame();

@@ -67,7 +67,8 @@ RgbImage StudioCell::SaliencyFrame(const store::TrialFrames& frames, size_t fram
   const std::filesystem::file_time_type written = std::filesystem::last_write_time(checkpoint);
   auto model = saliency_models_.find(method);
   if (model == saliency_models_.end() || model->second.written != written) {
-    model = saliency_models_.insert_or_assign(method, SaliencyModel{written, learn::LoadPolicy(checkpoint)})
+    model = saliency_models_
+                .insert_or_assign(method, SaliencyModel{written, learn::LoadPolicy(checkpoint)})
                 .first;
   }
   const learn::Policy& policy = model->second.policy;
@@ -80,8 +81,8 @@ RgbImage StudioCell::SaliencyFrame(const store::TrialFrames& frames, size_t fram
 }
 
 void StudioCell::DrawTrialFrame() {
-  trial_playback_.image = SaliencyFrame(
-      trial_frames_, static_cast<size_t>(trial_playback_.frame), trial_playback_.method);
+  trial_playback_.image = SaliencyFrame(trial_frames_, static_cast<size_t>(trial_playback_.frame),
+                                        trial_playback_.method);
   ++trial_playback_.image_frame;
 }
 

@@ -40,9 +40,8 @@ std::string ResultsCsv(const std::vector<RunResult>& runs, bool has_success) {
     std::snprintf(buf, sizeof(buf), "%s,%d,%d,%llu,%llu,%.6f,%d,%d,%.6g,%.6g,%.6g,%.6g",
                   r.condition.c_str(), r.demos, r.run, static_cast<unsigned long long>(r.data_seed),
                   static_cast<unsigned long long>(r.train_seed), r.metric, r.attempts,
-                  r.train_steps, r.final_losses.action_loss,
-                  r.final_losses.beacon_loss, r.final_losses.play_loss,
-                  r.final_losses.consistency_loss);
+                  r.train_steps, r.final_losses.action_loss, r.final_losses.beacon_loss,
+                  r.final_losses.play_loss, r.final_losses.consistency_loss);
     csv << buf;
     if (has_success) csv << "," << r.success_rate;
     for (const std::string& key : detail_keys) {

@@ -28,11 +28,11 @@ std::vector<double> NumbersOf(const json& v) {
 }
 
 json LossesToJson(const learn::StepMetrics& m) {
-  return {{"action", m.action_loss},   {"beacon", m.beacon_loss},
-          {"play", m.play_loss},       {"consistency", m.consistency_loss},
-          {"total", m.total_loss},     {"gate_mean", m.gate_mean},
-          {"blind", m.blind_loss},     {"gate", m.gate_loss},
-          {"attempt", m.attempt},      {"step", m.step}};
+  return {{"action", m.action_loss}, {"beacon", m.beacon_loss},
+          {"play", m.play_loss},     {"consistency", m.consistency_loss},
+          {"total", m.total_loss},   {"gate_mean", m.gate_mean},
+          {"blind", m.blind_loss},   {"gate", m.gate_loss},
+          {"attempt", m.attempt},    {"step", m.step}};
 }
 
 learn::StepMetrics LossesFromJson(const json& v) {
@@ -153,14 +153,17 @@ SweepPlan ReadSweepPlan(const std::string& dir) {
     json value = json::parse(ReadText(path));
     const int version = value.at("version").get<int>();
     if (version != kSweepPlanVersion) {
-      throw UserError(path + " is a plan of version " + std::to_string(version) + "; this recon "
-                      "reads version " + std::to_string(kSweepPlanVersion) +
+      throw UserError(path + " is a plan of version " + std::to_string(version) +
+                      "; this recon "
+                      "reads version " +
+                      std::to_string(kSweepPlanVersion) +
                       ": plan the sweep again with this binary");
     }
     const std::string digest = value.at("digest").get<std::string>();
     value.erase("digest");
     if (Digest(value) != digest) {
-      throw UserError(path + " was changed since it was written (its digest no longer matches): "
+      throw UserError(path +
+                      " was changed since it was written (its digest no longer matches): "
                       "plan the sweep again rather than editing the plan");
     }
     SweepPlan plan;

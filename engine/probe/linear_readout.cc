@@ -134,8 +134,8 @@ double ChooseRidge(const Rows& features, const Targets& targets, const std::vect
 
 }  // namespace
 
-ReadoutScore FitLinearReadout(const Rows& features, const Targets& targets, int fold,
-                              double ridge, const std::vector<int>& groups) {
+ReadoutScore FitLinearReadout(const Rows& features, const Targets& targets, int fold, double ridge,
+                              const std::vector<int>& groups) {
   if (fold < 2) throw UserError("a read-out holds out one frame in at least 2");
   CheckFrames(features, targets, groups);
   const size_t n = features.size();
@@ -177,8 +177,7 @@ ReadoutScore CrossValidatedReadout(const Rows& features, const Targets& targets,
                       std::to_string(fit.size()));
     }
     const double fold_ridge = ridge > 0 ? ridge : ChooseRidge(features, targets, fit, groups);
-    const Eigen::MatrixXd fold_predicted =
-        FitAndPredict(features, targets, fit, held, fold_ridge);
+    const Eigen::MatrixXd fold_predicted = FitAndPredict(features, targets, fit, held, fold_ridge);
     for (size_t r = 0; r < held.size(); ++r) {
       predicted.row(static_cast<Eigen::Index>(held[r])) =
           fold_predicted.row(static_cast<Eigen::Index>(r));

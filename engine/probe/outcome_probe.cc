@@ -40,7 +40,8 @@ OutcomeResult ProbeOutcomes(worlds::World& world, uint64_t scene_seed,
     // Places where the task cannot be done at all say nothing of the policy: left out.
     std::vector<GridPlace> places;
     int infeasible = 0;
-    for (const GridPlace& place : FreePlaces(grid, scene.bounds, scene.area, scene.layout, object)) {
+    for (const GridPlace& place :
+         FreePlaces(grid, scene.bounds, scene.area, scene.layout, object)) {
       world.Reset(scene_seed);
       world.PlaceObject(object, place.xy);
       if (world.TaskFeasible()) {
@@ -89,7 +90,8 @@ OutcomeResult ProbeOutcomes(worlds::World& world, uint64_t scene_seed,
       int successes = 0;
       for (double v : outcomes[m].succeeded) successes += v == 1.0 ? 1 : 0;
       outcomes[m].success_rate =
-          places.empty() ? 0.0 : static_cast<double>(successes) / static_cast<double>(places.size());
+          places.empty() ? 0.0
+                         : static_cast<double>(successes) / static_cast<double>(places.size());
       result.outcomes[m].push_back(std::move(outcomes[m]));
     }
   }

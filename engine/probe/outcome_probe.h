@@ -21,9 +21,9 @@ struct ObjectOutcome {
   /// where the object would overlap another or the task cannot be done at all (World::
   /// TaskFeasible: e.g. the plate out of the arm's reach).
   std::vector<double> succeeded;
-  double success_rate = 0;  ///< over the places rolled out from
-  int places = 0;           ///< rolled out from
-  int infeasible = 0;       ///< free places skipped because the task cannot be done there
+  double success_rate = 0;      ///< over the places rolled out from
+  int places = 0;               ///< rolled out from
+  int infeasible = 0;           ///< free places skipped because the task cannot be done there
   bool home_succeeded = false;  ///< the scene as it was
 };
 

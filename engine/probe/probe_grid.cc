@@ -61,8 +61,8 @@ std::vector<std::string> ObjectsToProbe(const worlds::World& world,
     if (!layout.count(object)) {
       std::string names;
       for (const auto& [name, place] : layout) names += (names.empty() ? "" : ", ") + name;
-      throw UserError("the " + world.Name() + " world has no object \"" + object + "\" (valid: " +
-                      names + ")");
+      throw UserError("the " + world.Name() + " world has no object \"" + object +
+                      "\" (valid: " + names + ")");
     }
   }
   return objects;

@@ -45,9 +45,8 @@ bool StoodStill(const std::vector<std::vector<double>>& readings, const std::vec
 RecordedFrames SampleRecordedFrames(const Dataset& data, const std::vector<BeaconSpec>& beacons,
                                     const std::vector<std::string>& objects, int max_frames) {
   if (objects.size() != beacons.size()) {
-    throw UserError("a read-out needs the object of each of the " +
-                    std::to_string(beacons.size()) + " beacons, got " +
-                    std::to_string(objects.size()));
+    throw UserError("a read-out needs the object of each of the " + std::to_string(beacons.size()) +
+                    " beacons, got " + std::to_string(objects.size()));
   }
   std::vector<Frame> all;
   int episode = 0;

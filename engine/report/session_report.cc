@@ -358,9 +358,9 @@ Part ProbePart(const SessionReport& report, FigureFiles& figures) {
     return part;
   }
   const SessionReport::Probe& probe = *report.probe;
-  part.status = probe.maps.empty() ? "read out on recorded frames"
-                                    : Count(probe.maps.size() + probe.outcome_maps.size(),
-                                            "heat map", "heat maps");
+  part.status = probe.maps.empty()
+                    ? "read out on recorded frames"
+                    : Count(probe.maps.size() + probe.outcome_maps.size(), "heat map", "heat maps");
   const bool outcomes = std::any_of(probe.rows.begin(), probe.rows.end(),
                                     [](const auto& row) { return row.success_rate.has_value(); });
   part.body = OutOfDate("The probe", probe.out_of_date);
@@ -372,8 +372,9 @@ Part ProbePart(const SessionReport& report, FigureFiles& figures) {
         "read-out fits each object's position from the features on other test scenes "
         "(R<sup>2</sup> 1: the features encode it; 0: not at all).";
     if (outcomes) {
-      part.body += " Each policy was also rolled out whole from every place: does it still do "
-                   "the task with the object there?";
+      part.body +=
+          " Each policy was also rolled out whole from every place: does it still do "
+          "the task with the object there?";
     }
     part.body += "</p>\n";
   } else {

@@ -101,10 +101,10 @@ struct SessionReport {
     };
     std::vector<Row> rows;
     std::vector<std::string> verdicts;  ///< what each method moves with and encodes
-    std::vector<HeatMap> maps;  ///< one per method and object, each object's on one scale
+    std::vector<HeatMap> maps;          ///< one per method and object, each object's on one scale
     std::vector<HeatMap> outcome_maps;  ///< where whole rollouts succeeded, when rolled out
-    std::string note;           ///< the scene, the grid and the read-out's scenes
-    std::string out_of_date;    ///< why it is not of the methods' current models; "" if it is
+    std::string note;                   ///< the scene, the grid and the read-out's scenes
+    std::string out_of_date;  ///< why it is not of the methods' current models; "" if it is
   };
   std::optional<Probe> probe;
 

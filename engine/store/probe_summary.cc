@@ -42,8 +42,8 @@ std::vector<double> GridValues(const FieldReader& fields, const std::string& key
                                const ProbeSummary& summary) {
   std::vector<double> values = fields.OptionalNumbers(key);
   if (!values.empty() && values.size() != static_cast<size_t>(summary.nx) * summary.ny) {
-    fields.Fail(key,
-                "expected " + std::to_string(summary.nx * summary.ny) + " values (the grid's cells)");
+    fields.Fail(
+        key, "expected " + std::to_string(summary.nx * summary.ny) + " values (the grid's cells)");
   }
   return values;
 }

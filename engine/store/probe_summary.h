@@ -31,7 +31,7 @@ struct ProbedObject {
   /// the object would overlap another, or the task cannot be done there).
   std::optional<double> success_rate;
   std::vector<double> outcome;
-  std::optional<bool> home_succeeded;  ///< the rollout of the scene as it was
+  std::optional<bool> home_succeeded;         ///< the rollout of the scene as it was
   std::optional<std::string> outcome_figure;  ///< the outcome's map, relative to the session
   /// The heat map (action change per grid cell), relative to the session; none if not written.
   std::optional<std::string> figure;

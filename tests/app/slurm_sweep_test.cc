@@ -24,8 +24,8 @@ namespace recon {
 namespace {
 
 namespace fs = std::filesystem;
-using ::testing::HasSubstr;
 using testing::CommandResult;
+using ::testing::HasSubstr;
 using testing::RunCommand;
 using testing::RunRecon;
 
@@ -40,9 +40,8 @@ class SlurmSweepTest : public ::testing::Test {
     root_ = fs::temp_directory_path() / ("recon-slurm-" + std::to_string(getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
-    const CommandResult up =
-        RunCommand(std::string(RECON_SOURCE_DIR) + "/scripts/slurm-local up " +
-                   (root_ / "cluster").string() + " 2>&1");
+    const CommandResult up = RunCommand(std::string(RECON_SOURCE_DIR) + "/scripts/slurm-local up " +
+                                        (root_ / "cluster").string() + " 2>&1");
     up_ = up.exit_code == 0;
     up_output_ = up.output;
     setenv("SLURM_CONF", (root_ / "cluster" / "slurm.conf").c_str(), 1);
@@ -52,7 +51,9 @@ class SlurmSweepTest : public ::testing::Test {
                (root_ / "cluster").string());
     fs::remove_all(root_);
   }
-  void SetUp() override { ASSERT_TRUE(up_) << "the one-node cluster did not start:\n" << up_output_; }
+  void SetUp() override {
+    ASSERT_TRUE(up_) << "the one-node cluster did not start:\n" << up_output_;
+  }
 
   /// The sweep's status once `done` holds for it; a failure after `timeout_s`.
   static std::string WaitForStatus(const fs::path& dir,

@@ -30,18 +30,10 @@ struct StudioOptionCase {
 void PrintTo(const StudioOptionCase& c, std::ostream* os) { *os << c.option; }
 
 std::vector<StudioOptionCase> NumericOptions() {
-  return {{"--seed", true},
-          {"--noise", false},
-          {"--demo-noise", false},
-          {"--train-steps", true},
-          {"--rollout-tests", true},
-          {"--probe-grid", true},
-          {"--frames", true},
-          {"--width", true},
-          {"--height", true},
-          {"--countdown", false},
-          {"--ui-scale", false},
-          {"--calibration-points", true}};
+  return {{"--seed", true},        {"--noise", false},        {"--demo-noise", false},
+          {"--train-steps", true}, {"--rollout-tests", true}, {"--probe-grid", true},
+          {"--frames", true},      {"--width", true},         {"--height", true},
+          {"--countdown", false},  {"--ui-scale", false},     {"--calibration-points", true}};
 }
 
 TEST(StudioOptionTableTest, EveryNumericOptionIsRangeCheckedAndInTheTable) {

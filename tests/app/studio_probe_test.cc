@@ -1,7 +1,8 @@
 // The studio's "Check what it looks at" on a real tabletop session (made and trained with the
 // `recon` binary): the probe runs as a job with its progress, lands in the session and the
 // Rollouts step, switches the object shown, a cancelled probe keeps the one from before, and on
-// ask each policy is rolled out from every place; the saliency is laid over the rollout playback and taken off again.
+// ask each policy is rolled out from every place; the saliency is laid over the rollout playback
+// and taken off again.
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -98,7 +99,8 @@ TEST_F(StudioProbeTest, ARecordedDemonstrationPlaysBackWithEachPolicysSaliencyOv
 
   // The saliency on: the frame is drawn again with the Baseline's map over it, then RECON's.
   controller.Push(ui::SetSaliency{ui::SaliencyMode::kGradient});
-  s = WaitFor(controller, [&](const auto& now) { return now.episode_playback.image.rgb != plain.rgb; });
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.episode_playback.image.rgb != plain.rgb; });
   const RgbImage baseline = s.episode_playback.image;
   controller.Push(ui::ShowEpisodeFrame{"demo_0", 5, "recon"});
   s = WaitFor(controller, [](const auto& now) { return now.episode_playback.method == "recon"; });
@@ -106,7 +108,8 @@ TEST_F(StudioProbeTest, ARecordedDemonstrationPlaysBackWithEachPolicysSaliencyOv
   EXPECT_NE(s.episode_playback.image.rgb, plain.rgb);
   // Past the end: the last frame.
   controller.Push(ui::ShowEpisodeFrame{"demo_0", 100000, ""});
-  s = WaitFor(controller, [&](const auto& now) { return now.episode_playback.frame == samples - 1; });
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.episode_playback.frame == samples - 1; });
   EXPECT_EQ(s.episode_playback.method, "recon");  // kept
 
   // Bad requests are refused by name; the playback stays as it was.
@@ -143,7 +146,7 @@ TEST_F(StudioProbeTest, RunsAsAJobAndShowsWhatEachPolicyLooksAt) {
       controller, [](const auto& now) { return !now.probe.running && now.probe.present; }, 120);
   ASSERT_TRUE(s.errors.empty()) << s.errors.back();
   EXPECT_THAT(s.status, HasSubstr("Checked what the policies look at"));
-  EXPECT_EQ(s.probe.rows.size(), 6u);  // two methods, three objects
+  EXPECT_EQ(s.probe.rows.size(), 6u);      // two methods, three objects
   ASSERT_EQ(s.probe.verdicts.size(), 4u);  // per method: what it moves with, what it encodes
   EXPECT_THAT(s.probe.verdicts[0], HasSubstr("moves most with the"));
   EXPECT_THAT(s.probe.verdicts[1], HasSubstr("features encode"));
@@ -175,8 +178,7 @@ TEST_F(StudioProbeTest, RunsAsAJobAndShowsWhatEachPolicyLooksAt) {
   });
   EXPECT_LE(s.probe.done, s.probe.total);
   s = WaitFor(
-      controller, [](const auto& now) { return !now.probe.running && now.probe.rolled_out; },
-      120);
+      controller, [](const auto& now) { return !now.probe.running && now.probe.rolled_out; }, 120);
   ASSERT_TRUE(s.errors.empty()) << s.errors.back();
   ASSERT_EQ(s.probe.rows.size(), 6u);
   for (const ui::ProbeView::Row& row : s.probe.rows) {

@@ -61,7 +61,8 @@ TEST(SweepPlanTest, UnitsRunAloneInAnyOrderGiveTheExperimentsRunsByteForByte) {
   const ExperimentResult assembled = AssembleExperiment(config, DescribeExperiment(config), alone);
   ASSERT_EQ(assembled.runs.size(), whole.runs.size());
   for (size_t i = 0; i < whole.runs.size(); ++i) {
-    UnitResult a{units[0], assembled.runs[i], std::nullopt}, b{units[0], whole.runs[i], std::nullopt};
+    UnitResult a{units[0], assembled.runs[i], std::nullopt},
+        b{units[0], whole.runs[i], std::nullopt};
     EXPECT_EQ(UnitResultText(a), UnitResultText(b)) << "run " << i;
   }
   ASSERT_EQ(assembled.loss_curves.size(), whole.loss_curves.size());
@@ -71,8 +72,8 @@ TEST(SweepPlanTest, UnitsRunAloneInAnyOrderGiveTheExperimentsRunsByteForByte) {
   EXPECT_EQ(assembled.expert_metric, whole.expert_metric);
 
   // Part of the units: the table has what is done, in order.
-  const ExperimentResult part = AssembleExperiment(config, DescribeExperiment(config),
-                                                   {alone[0], alone[7]});
+  const ExperimentResult part =
+      AssembleExperiment(config, DescribeExperiment(config), {alone[0], alone[7]});
   ASSERT_EQ(part.runs.size(), 2u);
   EXPECT_EQ(part.runs[0].run, 0);  // unit 0 (3 demos, baseline, run 0) comes first
   EXPECT_EQ(part.runs[1].run, 1);

@@ -55,7 +55,7 @@ std::vector<float> PlaceOf(const std::vector<float>& y, int channel) {
   constexpr int n = TwoObjectWorld::kSize;
   const std::vector<float> plane(y.begin() + channel * n * n, y.begin() + (channel + 1) * n * n);
   const std::vector<float> px = RedCentroid(plane);  // the centroid of whichever plane is given
-  return {(px[0] + 0.5f) / n, (px[1] + 0.5f) / n};  // a square's centre, within 5 cm a side
+  return {(px[0] + 0.5f) / n, (px[1] + 0.5f) / n};   // a square's centre, within 5 cm a side
 }
 
 /// A subject that points at the object drawn in `channel` (0 red, 2 blue), rolled out for real:
@@ -91,13 +91,13 @@ TEST(OutcomeProbeTest, APolicyThatReadsTheRightObjectStillSucceedsWhereverEither
   ProbeGrid grid;
   grid.nx = grid.ny = 10;
   int last_done = -1, last_total = 0;
-  const OutcomeResult result = ProbeOutcomes(
-      world, 3, {}, grid, {PointsAt(0, "reads red"), PointsAt(2, "reads blue")},
-      [&](int done, int total) {
-        EXPECT_GT(done, last_done);
-        last_done = done;
-        last_total = total;
-      });
+  const OutcomeResult result =
+      ProbeOutcomes(world, 3, {}, grid, {PointsAt(0, "reads red"), PointsAt(2, "reads blue")},
+                    [&](int done, int total) {
+                      EXPECT_GT(done, last_done);
+                      last_done = done;
+                      last_total = total;
+                    });
   EXPECT_EQ(last_total, 2 * 100);
   EXPECT_EQ(last_done, last_total);
   ASSERT_EQ(result.objects, (std::vector<std::string>{"blue", "red"}));
@@ -118,9 +118,8 @@ TEST(OutcomeProbeTest, APolicyThatReadsTheRightObjectStillSucceedsWhereverEither
   EXPECT_TRUE(std::isnan(red_reader_red.succeeded[0]));
   EXPECT_EQ(red_reader_red.succeeded[5 * 10 + 9], 1.0);
   world.Reset(3);
-  const size_t free = FreePlaces(grid, {0, 1, 0, 1}, *world.PlaceableArea(), world.ObjectLayout(),
-                                 "red")
-                          .size();
+  const size_t free =
+      FreePlaces(grid, {0, 1, 0, 1}, *world.PlaceableArea(), world.ObjectLayout(), "red").size();
   EXPECT_EQ(static_cast<size_t>(red_reader_red.places + red_reader_red.infeasible), free);
   EXPECT_LT(free, 100u);
   int rolled = 0;

@@ -85,7 +85,7 @@ TEST(RecordedReadoutTest, FeaturesThatAreTheBeaconsPlaceReadOutNearOneOnHeldOutE
 
   const auto scores = ReadOutRecorded(Sees({0, 1, 2}), frames);  // the place, and noise
   ASSERT_TRUE(scores.at("plate").has_value());
-  EXPECT_GT(scores.at("plate")->r2, 0.95);  // only the beacon's 1 cm noise is left
+  EXPECT_GT(scores.at("plate")->r2, 0.95);       // only the beacon's 1 cm noise is left
   EXPECT_EQ(scores.at("plate")->held_out, 200);  // every frame predicted, by the other episodes
   EXPECT_FALSE(scores.at("toast").has_value());  // it never moved: nothing to read out
 
@@ -112,10 +112,10 @@ TEST(RecordedReadoutTest, SamplesEvenlyUpToTheCapAndRefusesAMismatch) {
   // A play sample of no known chunk stands alone.
   Dataset loose = data;
   loose.play_chunks.clear();
-  EXPECT_EQ(SampleRecordedFrames(loose, kBeacons, {"plate", "toast"}, 2000).episode_count,
-            2 + 600);
+  EXPECT_EQ(SampleRecordedFrames(loose, kBeacons, {"plate", "toast"}, 2000).episode_count, 2 + 600);
   // One episode cannot be held out and fitted on at once: no score rather than a made-up one.
-  const RecordedFrames one = SampleRecordedFrames(Recorded(1, 0, 30), kBeacons, {"plate", "toast"}, 2000);
+  const RecordedFrames one =
+      SampleRecordedFrames(Recorded(1, 0, 30), kBeacons, {"plate", "toast"}, 2000);
   EXPECT_FALSE(ReadOutRecorded(Sees({0, 1}), one).at("plate").has_value());
   try {
     SampleRecordedFrames(data, kBeacons, {"plate"}, 10);

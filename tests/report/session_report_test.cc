@@ -236,7 +236,8 @@ TEST(SessionReportTest, TheProbeShowsWholeRolloutsOrARealCellsReadOutWithNothing
   EXPECT_THAT(html, HasSubstr("Rollouts succeeded"));
   EXPECT_THAT(html, HasSubstr("90 %"));  // RECON (Play) with the bowl moved
   EXPECT_THAT(html, HasSubstr("succeeds from 35 %"));
-  EXPECT_TRUE(fs::exists(dir.File("rolled/figures/probe_Baseline__whole_rollouts__the_bowl_moved.png")));
+  EXPECT_TRUE(
+      fs::exists(dir.File("rolled/figures/probe_Baseline__whole_rollouts__the_bowl_moved.png")));
 
   // A real cell's session: only the read-out, on recorded frames; no grid, no map.
   SessionReport real = FullReport();

@@ -64,9 +64,9 @@ void DrawProbeResults(const ScreenContext& context) {
       }
       if (p.rolled_out) {
         ImGui::TableNextColumn();
-        DrawOptional(row.success_rate ? std::optional<double>(100 * *row.success_rate)
-                                      : std::nullopt,
-                     "%.0f %%");
+        DrawOptional(
+            row.success_rate ? std::optional<double>(100 * *row.success_rate) : std::nullopt,
+            "%.0f %%");
       }
     }
     ImGui::EndTable();

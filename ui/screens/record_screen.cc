@@ -260,9 +260,8 @@ void DrawRecordScreen(const ScreenContext& context) {
   const float start_x = ImGui::GetCursorPosX();
   ImGui::BeginGroup();
   float left_width = 0;
-  const float views_width = s.teacher_view.available
-                                ? TeacherViewWidth() + Px(kThumbnailWidth + 16)
-                                : CameraWidth();
+  const float views_width =
+      s.teacher_view.available ? TeacherViewWidth() + Px(kThumbnailWidth + 16) : CameraWidth();
   if (!s.episode_playback.episode.empty() && !s.recording) {
     // A demonstration played back takes the live views' place until it is closed.
     left_width = views_width;

@@ -171,8 +171,8 @@ using StudioCommand =
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
                  UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
-                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, ShowEpisodeFrame, RunProbe, CancelProbe,
-                 ShowProbeObject, SetSaliency>;
+                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, ShowEpisodeFrame, RunProbe,
+                 CancelProbe, ShowProbeObject, SetSaliency>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {
