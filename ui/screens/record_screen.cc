@@ -289,6 +289,8 @@ void DrawRecordScreen(const ScreenContext& context) {
   DrawTakeControls(context, blocked, why);
   ImGui::Spacing();
   ImGui::Text("Demonstrations (%zu)", s.episodes.size());
+  ImGui::SameLine();
+  ImGui::TextDisabled("click one to watch it");
   if (!s.undo_delete.empty()) {
     ImGui::SameLine();
     if (Button(("Undo delete " + s.undo_delete + "##undo-delete").c_str(),
@@ -305,17 +307,22 @@ void DrawRecordScreen(const ScreenContext& context) {
     ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(52));
     ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(42));
     // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(290));
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(226));
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      if (e.bad) {
-        ImGui::TextDisabled("%s (bad)", e.name.c_str());
-      } else {
-        ImGui::TextUnformatted(e.name.c_str());
+      // The name plays the demonstration back (in the live views' place) when clicked.
+      const bool shown = s.episode_playback.episode == e.name;
+      if (e.bad)
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+      if (Selectable((e.name + (e.bad ? " (bad)" : "") + "##watch").c_str(), shown,
+                     e.problem.empty()) &&
+          !shown) {
+        context.commands.Push(ShowEpisodeFrame{e.name, 0, s.episode_playback.method});
       }
+      if (e.bad) ImGui::PopStyleColor();
       ImGui::TableNextColumn();
       ImGui::Text("%d", e.samples);
       ImGui::TableNextColumn();
@@ -324,12 +331,6 @@ void DrawRecordScreen(const ScreenContext& context) {
       ImGui::TextUnformatted(!e.problem.empty() ? "damaged" : e.succeeded ? "yes" : "no");
       ImGui::TableNextColumn();
       const bool idle = !s.recording && !blocked && s.pending_take.empty();
-      const bool shown = s.episode_playback.episode == e.name;
-      if (Button(("Watch##" + e.name).c_str(), e.problem.empty() && !shown,
-                 shown ? "shown below" : "the episode is damaged")) {
-        context.commands.Push(ShowEpisodeFrame{e.name, 0, s.episode_playback.method});
-      }
-      ImGui::SameLine();
       if (Button(("Delete##" + e.name).c_str(), idle)) {
         context.commands.Push(DeleteEpisode{e.name});
       }
