@@ -327,7 +327,7 @@ void AddExperimentCommands(CLI::App& app, const GlobalOptions& global) {
     AddWorldCommand(*experiment, world, ExperimentHelp(world), global);
   }
   AddSweepCommands(*experiment, global);
-  AddSlurmCommands(*experiment, global);
+  AddSlurmCommands(*experiment);
 }
 
 }  // namespace recon::cli

@@ -225,8 +225,8 @@ void Status(const std::string& dir) {
 
 }  // namespace
 
-void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global) {
-  (void)global;  // the array's tasks set their own threads (--cpus-per-task)
+void AddSlurmCommands(CLI::App& experiment) {
+  // The array's tasks set their own threads (--cpus-per-task).
   auto flags = std::make_shared<SubmitFlags>();
   CLI::App* submit = experiment.add_subcommand(
       "submit",

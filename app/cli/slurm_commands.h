@@ -11,11 +11,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/cli/experiment_command.h"
-
 namespace recon::cli {
 
 /// Adds `recon experiment submit` and `recon experiment status`.
-void AddSlurmCommands(CLI::App& experiment, const GlobalOptions& global);
+void AddSlurmCommands(CLI::App& experiment);
 
 }  // namespace recon::cli

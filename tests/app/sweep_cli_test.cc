@@ -97,6 +97,21 @@ TEST_F(SessionCliTest, ASweepRefusesBadInputByNameAndKeepsItsFinishedUnits) {
     EXPECT_EQ(ReadBytes(dir / "units" / "unit_1.json"), unit1) << c.args;
     EXPECT_EQ(ReadBytes(dir / "plan.json"), plan) << c.args;
   }
+  // No Slurm here: no sbatch on PATH is a clear error, and nothing is submitted.
+  r = RunCommand("env PATH=/nonexistent " + std::string(RECON_CLI) + " experiment submit " +
+                 dir.string() + " --slurm 2>&1");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("no sbatch on PATH"));
+  EXPECT_FALSE(fs::exists(dir / "slurm"));
+  // Two collects at once: both finish, and what they leave is whole.
+  const std::string collect =
+      std::string(RECON_CLI) + " experiment collect " + dir.string() + " > /dev/null 2>&1";
+  r = RunCommand("(" + collect + " & " + collect + "; first=$?; wait $!; echo $first $?)");
+  EXPECT_EQ(r.output, "0 0\n");
+  const std::string csv = ReadBytes(dir / "results.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);  // the header and unit 1's row
+  EXPECT_TRUE(ReadJson(dir / "summary.json").contains("conditions"));
+
   // A plan edited by hand is refused before anything runs.
   json edited = ReadJson(dir / "plan.json");
   edited["arguments"][4] = "3";
