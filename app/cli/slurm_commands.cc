@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -103,6 +104,57 @@ std::vector<bool> DoneUnits(const std::string& dir, size_t count) {
   return done;
 }
 
+/// The last line of `text` that says something (a cancelled task's log ends in slurmstepd's
+/// "*** JOB 12 ON node CANCELLED AT ... ***", a failed unit's in recon's error), cut to a line.
+std::string LastWords(const std::string& text) {
+  std::istringstream lines(text);
+  std::string last;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  constexpr size_t kMaxChars = 160;
+  if (last.size() > kMaxChars) last = last.substr(0, kMaxChars - 3) + "...";
+  return last;
+}
+
+/// Unit index -> why it ended without a result, for the units some submission in
+/// DIR/slurm/jobs.json ran: the last words of its task's log in the latest submission that
+/// had it. Read from the logs, not from accounting (sacct), which many clusters and the
+/// one-node cluster do not keep; a unit done or still queued is not asked about.
+std::map<int, std::string> SubmittedUnits(const std::string& dir) {
+  std::map<int, std::string> submitted;
+  const fs::path slurm = fs::path(dir) / "slurm";
+  json jobs;
+  try {
+    jobs = json::parse(std::ifstream(slurm / "jobs.json"));
+  } catch (const json::exception&) {
+    return submitted;  // never submitted, or the history is lost: the units read as missing
+  }
+  if (!jobs.is_array()) return submitted;
+  for (const json& submission : jobs) {
+    if (!submission.is_object() || !submission.contains("job") || !submission.contains("units") ||
+        !submission["units"].is_array()) {
+      continue;
+    }
+    const std::string job = submission["job"].is_string() ? submission["job"].get<std::string>()
+                                                          : submission["job"].dump();
+    for (const json& unit : submission["units"]) {
+      if (!unit.is_number_integer()) continue;
+      const int k = unit.get<int>();
+      const fs::path log = slurm / ("task_" + job + "_" + std::to_string(k) + ".log");
+      std::ifstream in(log);
+      const std::string words =
+          in ? LastWords({std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()})
+             : "";
+      submitted[k] = "job " + job + "_" + std::to_string(k) + ": " +
+                     (!in             ? "no log: cancelled or refused before it started"
+                      : words.empty() ? "its log is empty"
+                                      : words);
+    }
+  }
+  return submitted;
+}
+
 std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
   const std::string dir = fs::absolute(flags.dir).lexically_normal().string();
   const std::string recon = fs::read_symlink("/proc/self/exe").string();
@@ -198,7 +250,8 @@ void Status(const std::string& dir) {
   const std::vector<bool> done = DoneUnits(dir, plan.units.size());
   std::string why;
   const std::optional<std::map<int, std::string>> queued = QueuedUnits(dir, why);
-  std::vector<int> running, pending, missing;
+  const std::map<int, std::string> submitted = SubmittedUnits(dir);
+  std::vector<int> running, pending, failed, missing;
   int done_count = 0;
   for (size_t k = 0; k < plan.units.size(); ++k) {
     const int unit = static_cast<int>(k);
@@ -206,20 +259,38 @@ void Status(const std::string& dir) {
       ++done_count;
     } else if (queued && queued->count(unit)) {
       (queued->at(unit) == "PD" ? pending : running).push_back(unit);
+    } else if (queued && submitted.count(unit)) {
+      failed.push_back(unit);  // it ran, or was meant to, and left no result
     } else {
       missing.push_back(unit);
     }
   }
-  std::printf("%zu units: %d done, %zu running, %zu pending, %zu missing%s\n", plan.units.size(),
-              done_count, running.size(), pending.size(), missing.size(),
-              queued ? "" : (" (" + why + ": from the unit files alone)").c_str());
+  std::printf("%zu units: %d done, %zu running, %zu pending, %zu failed, %zu missing%s\n",
+              plan.units.size(), done_count, running.size(), pending.size(), failed.size(),
+              missing.size(), queued ? "" : (" (" + why + ": from the unit files alone)").c_str());
   if (!running.empty()) std::printf("running: %s\n", ArraySpec(running).c_str());
   if (!pending.empty()) std::printf("pending: %s\n", ArraySpec(pending).c_str());
+  if (!failed.empty()) {
+    std::printf("failed (submitted, ended without a result): %s\n", ArraySpec(failed).c_str());
+    constexpr size_t kShown = 10;
+    for (size_t i = 0; i < failed.size() && i < kShown; ++i) {
+      std::printf("  unit %d, %s\n", failed[i], submitted.at(failed[i]).c_str());
+    }
+    if (failed.size() > kShown) {
+      std::printf("  and %zu more (their logs: %s/slurm/task_JOB_UNIT.log)\n",
+                  failed.size() - kShown, dir.c_str());
+    }
+  }
   if (!missing.empty()) {
-    std::printf(
-        "missing (not done and not queued: never submitted, failed, killed or "
-        "preempted): %s; `recon experiment submit %s --slurm` runs them\n",
-        ArraySpec(missing).c_str(), dir.c_str());
+    std::printf("missing (not done and not queued%s): %s\n",
+                queued ? ", never submitted" : ": never submitted, failed, killed or preempted",
+                ArraySpec(missing).c_str());
+  }
+  if (!failed.empty() || !missing.empty()) {
+    std::printf("`recon experiment submit %s --slurm` runs the %s\n", dir.c_str(),
+                failed.empty()    ? "missing"
+                : missing.empty() ? "failed"
+                                  : "failed and the missing");
   }
 }
 
@@ -247,8 +318,8 @@ void AddSlurmCommands(CLI::App& experiment) {
   auto status_dir = std::make_shared<std::string>();
   CLI::App* status = experiment.add_subcommand(
       "status",
-      "how far a sweep is: units done (their files), running and pending (squeue), "
-      "and missing");
+      "how far a sweep is: units done (their files), running and pending (squeue), failed "
+      "(submitted, no result: why, from its task's log) and missing (never submitted)");
   status->add_option("dir", *status_dir, "the sweep's folder (its plan.json)")->required();
   status->callback([status_dir] { Status(*status_dir); });
 }

@@ -7,7 +7,10 @@
 //                               [--max-parallel M] [--dry-run]
 //   recon experiment status DIR
 //
-// Submitting again submits only the units neither done nor queued: the missing and the failed.
+// Status reads the unit files, the queue (squeue) and each submission's task logs: a unit
+// submitted that is neither done nor queued failed (cancelled, preempted, out of time, or an
+// error of its own), and its log's last words say which. Submitting again submits only the
+// units neither done nor queued: the missing and the failed.
 
 #include <CLI/CLI.hpp>
 
