@@ -162,8 +162,10 @@ void AddTwinCommand(CLI::App& app) {
   up->add_option("--seed", up_flags->seed, "the hidden UWB frame and the beacon's noise")
       ->check(SeedNumber())
       ->capture_default_str();
+  // An explicit 0 is refused rather than read as "forever": a person who types a duration
+  // expects it to end.
   up->add_option("--seconds", up_flags->seconds, "stop after this long (default: until Ctrl-C)")
-      ->check(NumberBetween(0, 1e7));
+      ->check(PositiveNumberUpTo(1e7));
   up->callback([up_flags] { RunUp(*up_flags); });
 
   auto move_flags = std::make_shared<MoveFlags>();

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "engine/core/digest.h"
 #include "engine/core/error.h"
@@ -169,7 +171,7 @@ class Digests {
   json stored_;
 };
 
-// Reads everything; `with_optimizer` = false skips the Adam moments (LoadPolicy).
+// Reads and checks everything; `with_optimizer` = false drops the Adam moments (LoadPolicy).
 CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) {
   if (!std::filesystem::is_regular_file(path)) {
     throw UserError("checkpoint '" + path + "' does not exist");
@@ -189,9 +191,13 @@ CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) 
     StateFromJson(digests.CheckedString(archive, "state"), c.state, c.fingerprint);
     c.state.params = digests.CheckedTensor(archive, "params");
     c.scaling = digests.CheckedTensor(archive, "target_scaling");
+    // The moments are checked even for a policy that does not use them: a checkpoint with a
+    // damaged entry is refused wherever it is read, not only once training resumes from it.
+    std::vector<float> exp_avg = digests.CheckedTensor(archive, "exp_avg");
+    std::vector<float> exp_avg_sq = digests.CheckedTensor(archive, "exp_avg_sq");
     if (with_optimizer) {
-      c.state.exp_avg = digests.CheckedTensor(archive, "exp_avg");
-      c.state.exp_avg_sq = digests.CheckedTensor(archive, "exp_avg_sq");
+      c.state.exp_avg = std::move(exp_avg);
+      c.state.exp_avg_sq = std::move(exp_avg_sq);
     }
   } catch (const UserError& e) {
     throw UserError("checkpoint '" + path + "': " + e.what());

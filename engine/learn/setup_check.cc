@@ -88,13 +88,15 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
   }
   ValidateDataset(data, "training data");
   if (train.random_shift_px > 0 && !data.spec.YIsImage()) {
-    throw UserError("train config: random_shift_px shifts camera images, but y is a vector (" +
-                    data.spec.ToString() + "); set it to 0");
+    throw UserError(
+        "train config: random_shift_px (--random-shift) shifts camera images, but y is a "
+        "vector (" +
+        data.spec.ToString() + "); set it to 0");
   }
   if (train.random_erase_px > 0 && !data.spec.YIsImage()) {
     throw UserError(
-        "train config: random_erase_px erases squares of camera images, but y is a "
-        "vector (" +
+        "train config: random_erase_px erases squares of camera images (--random-erase), "
+        "but y is a vector (" +
         data.spec.ToString() + "); set it to 0");
   }
   if (train.method == Method::kRecon) {
