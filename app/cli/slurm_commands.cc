@@ -117,21 +117,26 @@ std::string LastWords(const std::string& text) {
   return last;
 }
 
-/// Unit index -> why it ended without a result, for the units some submission in
-/// DIR/slurm/jobs.json ran: the last words of its task's log in the latest submission that
-/// had it. Read from the logs, not from accounting (sacct), which many clusters and the
-/// one-node cluster do not keep; a unit done or still queued is not asked about.
-std::map<int, std::string> SubmittedUnits(const std::string& dir) {
-  std::map<int, std::string> submitted;
-  const fs::path slurm = fs::path(dir) / "slurm";
-  json jobs;
+/// The submissions recorded in DIR/slurm/jobs.json (a JSON array; empty when there were none
+/// or the file is damaged, which loses only history: the units then read as missing).
+json ReadSubmissions(const fs::path& slurm) {
   try {
-    jobs = json::parse(std::ifstream(slurm / "jobs.json"));
+    json jobs = json::parse(std::ifstream(slurm / "jobs.json"));
+    if (jobs.is_array()) return jobs;
   } catch (const json::exception&) {
-    return submitted;  // never submitted, or the history is lost: the units read as missing
   }
-  if (!jobs.is_array()) return submitted;
-  for (const json& submission : jobs) {
+  return json::array();
+}
+
+/// Where array task `unit` of `job` logs (the script's --output=task_%A_%a.log).
+fs::path TaskLog(const fs::path& slurm, const std::string& job, int unit) {
+  return slurm / ("task_" + job + "_" + std::to_string(unit) + ".log");
+}
+
+/// Unit index -> the job of the latest submission that had it.
+std::map<int, std::string> SubmittedUnits(const fs::path& slurm) {
+  std::map<int, std::string> submitted;
+  for (const json& submission : ReadSubmissions(slurm)) {
     if (!submission.is_object() || !submission.contains("job") || !submission.contains("units") ||
         !submission["units"].is_array()) {
       continue;
@@ -139,20 +144,21 @@ std::map<int, std::string> SubmittedUnits(const std::string& dir) {
     const std::string job = submission["job"].is_string() ? submission["job"].get<std::string>()
                                                           : submission["job"].dump();
     for (const json& unit : submission["units"]) {
-      if (!unit.is_number_integer()) continue;
-      const int k = unit.get<int>();
-      const fs::path log = slurm / ("task_" + job + "_" + std::to_string(k) + ".log");
-      std::ifstream in(log);
-      const std::string words =
-          in ? LastWords({std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()})
-             : "";
-      submitted[k] = "job " + job + "_" + std::to_string(k) + ": " +
-                     (!in             ? "no log: cancelled or refused before it started"
-                      : words.empty() ? "its log is empty"
-                                      : words);
+      if (unit.is_number_integer()) submitted[unit.get<int>()] = job;
     }
   }
   return submitted;
+}
+
+/// Why unit `unit` of `job` ended without a result: the last words of its task's log. Read
+/// from the logs, not from accounting (sacct), which many clusters and the one-node cluster
+/// do not keep.
+std::string WhyItFailed(const fs::path& slurm, const std::string& job, int unit) {
+  std::ifstream in(TaskLog(slurm, job, unit));
+  if (!in) return "no log: cancelled or refused before it started";
+  const std::string words =
+      LastWords({std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()});
+  return words.empty() ? "its log is empty" : words;
 }
 
 std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
@@ -227,14 +233,7 @@ void Submit(const SubmitFlags& flags) {
   const std::string job = r.out.substr(0, r.out.find_first_of(";\n"));
   // The submissions so far, for people and for `status`.
   const fs::path jobs_path = slurm / "jobs.json";
-  json jobs = json::array();
-  if (fs::exists(jobs_path)) {
-    try {
-      jobs = json::parse(std::ifstream(jobs_path));
-    } catch (const json::exception&) {
-      jobs = json::array();  // a damaged list of submissions is only lost history
-    }
-  }
+  json jobs = ReadSubmissions(slurm);
   jobs.push_back({{"job", job}, {"units", todo}, {"script", script_path.filename().string()}});
   WriteFileAtomically(jobs_path.string(), jobs.dump(1) + "\n");
   std::printf(
@@ -250,7 +249,8 @@ void Status(const std::string& dir) {
   const std::vector<bool> done = DoneUnits(dir, plan.units.size());
   std::string why;
   const std::optional<std::map<int, std::string>> queued = QueuedUnits(dir, why);
-  const std::map<int, std::string> submitted = SubmittedUnits(dir);
+  const fs::path slurm = fs::path(dir) / "slurm";
+  const std::map<int, std::string> submitted = SubmittedUnits(slurm);
   std::vector<int> running, pending, failed, missing;
   int done_count = 0;
   for (size_t k = 0; k < plan.units.size(); ++k) {
@@ -274,7 +274,9 @@ void Status(const std::string& dir) {
     std::printf("failed (submitted, ended without a result): %s\n", ArraySpec(failed).c_str());
     constexpr size_t kShown = 10;
     for (size_t i = 0; i < failed.size() && i < kShown; ++i) {
-      std::printf("  unit %d, %s\n", failed[i], submitted.at(failed[i]).c_str());
+      const std::string& job = submitted.at(failed[i]);
+      std::printf("  unit %d, job %s_%d: %s\n", failed[i], job.c_str(), failed[i],
+                  WhyItFailed(slurm, job, failed[i]).c_str());
     }
     if (failed.size() > kShown) {
       std::printf("  and %zu more (their logs: %s/slurm/task_JOB_UNIT.log)\n",
