@@ -172,7 +172,12 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   }
   if (!worlds::WorldNeedsRenderer(config.world)) {
     // Vector observations have no pixels to shift or erase.
-    if (flags.random_shift < 0) config.train.random_shift_px = 0;
+    // Refused here, before anything is written into --out, rather than by the first unit.
+    if (flags.random_shift > 0) {
+      throw UserError("--random-shift: the " + config.world +
+                      " world's observations are vectors, not camera images");
+    }
+    config.train.random_shift_px = 0;
     if (flags.random_erase > 0) {
       throw UserError("--random-erase: the " + config.world +
                       " world's observations are vectors, not camera images");

@@ -129,6 +129,19 @@ experiments::ExperimentConfig ConfigOfArguments(const std::vector<std::string>& 
   return ToConfig(*flags, *command);
 }
 
+namespace {
+
+// A plan no unit has run from and no cluster was given holds no work: a corrected command
+// replaces it (the first unit of the plan before may have refused its configuration).
+bool NothingOfThePlanRanYet(const std::string& dir) {
+  std::error_code error;
+  const fs::path units = fs::path(dir) / "units";
+  const bool no_units = !fs::exists(units, error) || fs::is_empty(units, error);
+  return !error && no_units && !fs::exists(fs::path(dir) / "slurm", error);
+}
+
+}  // namespace
+
 experiments::SweepPlan PlanSweep(const experiments::ExperimentConfig& config,
                                  const std::vector<std::string>& arguments, const std::string& dir,
                                  bool force) {
@@ -140,7 +153,7 @@ experiments::SweepPlan PlanSweep(const experiments::ExperimentConfig& config,
       if (!force) throw;
     }
     if (existing && existing->arguments == arguments) return *existing;  // resume
-    if (!force) {
+    if (!force && !NothingOfThePlanRanYet(dir)) {
       throw UserError(dir + " holds the plan of another sweep (" + experiments::PlanPath(dir) +
                       "); choose another --out or pass --force to replace it");
     }

@@ -235,16 +235,25 @@ TEST(CellCliTest, AGripperFloorOutsideTheTabletopIsRefused) {
   }
 }
 
-TEST(CellCliTest, RandomErasingOfVectorObservationsIsRefused) {
+// Shifting or erasing pixels of a vector world is refused before anything is written, so the
+// corrected command runs into the same --out.
+TEST(CellCliTest, ImageAugmentationOfVectorObservationsIsRefused) {
   const fs::path out = FreshDir("random_erase");
   for (const char* world : {"dynamic2d", "static2d", "bintransfer"}) {
-    const CommandResult r =
-        RunRecon(std::string("experiment ") + world +
-                 " --runs 1 --tests 1 --random-erase 8 --out " + (out / world).string());
-    EXPECT_EQ(r.exit_code, 2) << world << ": " << r.output;
-    EXPECT_THAT(r.output, HasSubstr("--random-erase: the " + std::string(world) +
-                                    " world's observations are vectors, not camera images"));
-    EXPECT_FALSE(fs::exists(out / world / "summary.json")) << world;
+    for (const std::string option : {"--random-erase 8", "--random-shift 4"}) {
+      const std::string flag = option.substr(0, option.find(' '));
+      const CommandResult r = RunRecon(std::string("experiment ") + world + " --runs 1 --tests 1 " +
+                                       option + " --plan-only --out " + (out / world).string());
+      EXPECT_EQ(r.exit_code, 2) << world << " " << option << ": " << r.output;
+      EXPECT_THAT(r.output, HasSubstr(flag + ": the " + std::string(world) +
+                                      " world's observations are vectors, not camera images"));
+      EXPECT_FALSE(fs::exists(out / world)) << world << " " << option;
+    }
+    const CommandResult r = RunRecon(std::string("experiment ") + world +
+                                     " --runs 1 --tests 1 --random-shift 0 --plan-only --out " +
+                                     (out / world).string());
+    EXPECT_EQ(r.exit_code, 0) << world << ": " << r.output;
+    EXPECT_TRUE(fs::exists(out / world / "plan.json")) << world;
   }
 }
 

@@ -122,5 +122,38 @@ TEST_F(SessionCliTest, ASweepRefusesBadInputByNameAndKeepsItsFinishedUnits) {
   EXPECT_FALSE(fs::exists(dir / "units" / "unit_0.json"));
 }
 
+// A plan nothing ran from holds no work: the corrected command replaces it without --force.
+// Once a unit has a result, or the plan went to a cluster, it is refused as before.
+TEST_F(SessionCliTest, APlanNothingRanFromIsReplacedByTheCorrectedCommand) {
+  const fs::path dir = Path("corrected");
+  CommandResult r = RunRecon(kSweep + " --plan-only --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string other =
+      "experiment dynamic2d --conditions baseline --runs 1 --tests 4 --steps 50 --seed 5";
+  r = RunRecon(other + " --plan-only --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(ReadJson(dir / "plan.json")["units"].size(), 1u);
+
+  // One unit of it ran: another command is refused and the plan and result are kept.
+  r = RunRecon("experiment run-unit " + dir.string() + " --unit 0");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string plan = ReadBytes(dir / "plan.json");
+  r = RunRecon(kSweep + " --plan-only --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("holds the plan of another sweep"));
+  EXPECT_EQ(ReadBytes(dir / "plan.json"), plan);
+  EXPECT_TRUE(fs::exists(dir / "units" / "unit_0.json"));
+
+  // A plan handed to a cluster (slurm/ exists) is refused even before any unit finished.
+  const fs::path sent = Path("sent");
+  r = RunRecon(kSweep + " --plan-only --out " + sent.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  fs::create_directories(sent / "slurm");
+  r = RunRecon(other + " --plan-only --out " + sent.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("holds the plan of another sweep"));
+  EXPECT_EQ(ReadJson(sent / "plan.json")["units"].size(), 6u);
+}
+
 }  // namespace
 }  // namespace recon::session_cli_testing
