@@ -147,7 +147,7 @@ CLI::App* AddWorldOptions(CLI::App& experiment, const std::string& world, const 
       ->add_option("--lr", flags->learning_rate,
                    "Adam learning rate (default: the world's recipe: 0.0004, the authors'; "
                    "tabletop 0.001)")
-      ->check(PositiveNumberUpTo(kMaxLearningRate));
+      ->check(NumberBetween(learn::kMinLearningRate, kMaxLearningRate));
   command
       ->add_option("--lr-schedule", flags->lr_schedule,
                    "constant or cosine (decay to 0 over the run) learning rate (default: the "

@@ -295,7 +295,7 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->add_option("--lr", flags->learning_rate,
                    "Adam learning rate (default: the world's recipe: 0.001 on the tabletop, "
                    "0.0004 elsewhere)")
-      ->check(PositiveNumberUpTo(kMaxLearningRate));
+      ->check(NumberBetween(learn::kMinLearningRate, kMaxLearningRate));
   train->add_option("--feature-dim", flags->feature_dim, "feature size k (must exceed d)")
       ->check(WholeBetween(1, kMaxFeatureDim))
       ->capture_default_str();

@@ -24,6 +24,31 @@ std::string RangeText(double min, double max, bool whole, bool min_exclusive) {
   return "must be " + kind + " from " + text(min) + " to " + text(max);
 }
 
+// A plain decimal as a person types it: an optional sign, digits with at most one point, and an
+// optional exponent ("-0.5", "3", ".5", "1e-3"). strtod also reads hexadecimal ("0x10" is 16),
+// leading blanks and "infinity", none of which a person means as a count or a rate.
+bool IsPlainDecimal(const std::string& text) {
+  std::size_t i = 0;
+  const auto digit = [&text](std::size_t k) {
+    return k < text.size() && text[k] >= '0' && text[k] <= '9';
+  };
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t digits = 0;
+  while (digit(i)) ++i, ++digits;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (digit(i)) ++i, ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (!digit(i)) return false;
+    while (digit(i)) ++i;
+  }
+  return i == text.size();
+}
+
 }  // namespace
 
 std::string CheckNumber(const std::string& text, double min, double max, bool whole,
@@ -33,7 +58,7 @@ std::string CheckNumber(const std::string& text, double min, double max, bool wh
   char* end = nullptr;
   errno = 0;
   const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end == text.c_str() || *end != '\0') return range + got;
+  if (!IsPlainDecimal(text) || end == text.c_str() || *end != '\0') return range + got;
   if (!std::isfinite(value) || errno == ERANGE) return range + got;
   if (whole && value != std::floor(value)) return range + got;
   if (value < min || value > max || (min_exclusive && value <= min)) return range + got;

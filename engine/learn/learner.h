@@ -149,6 +149,10 @@ constexpr double kMaxGateMargin = 100.0;
 /// The largest TrainConfig::weight_decay accepted (per unit of learning rate; with the tabletop's
 /// rate of 1e-3 it takes 1 % off every weight per step).
 constexpr double kMaxWeightDecay = 10.0;
+/// The smallest TrainConfig::learning_rate accepted. The kernels step in float: far below it a
+/// step changes no weight (1e-300 is 0 in float) and the moments go subnormal, which only slows
+/// the run; a typo of the exponent is refused instead of trained for hours to no effect.
+constexpr double kMinLearningRate = 1e-9;
 
 /// The training recipe. Defaults are the authors' (REFERENCE.md 2) except the loss and its
 /// weights, which are the paper's: an unweighted sum of negative log-likelihoods (eq. 6).

@@ -41,9 +41,10 @@ void CheckTrainingSetup(const Dataset& data, const NetworkConfig& network,
     throw UserError("train config: batch_size must be positive (got " +
                     std::to_string(train.batch_size) + ")");
   }
-  if (!std::isfinite(train.learning_rate) || train.learning_rate <= 0) {
+  if (!std::isfinite(train.learning_rate) || train.learning_rate < kMinLearningRate) {
     std::ostringstream msg;
-    msg << "train config: learning_rate must be positive (got " << train.learning_rate << ")";
+    msg << "train config: learning_rate must be at least " << kMinLearningRate << " (got "
+        << train.learning_rate << ")";
     throw UserError(msg.str());
   }
   CheckWeight(train.action_weight, "action_weight");

@@ -35,7 +35,11 @@ TEST(OptionChecksTest, ANumberMustBeFiniteInRangeAndWholeWhereAsked) {
   EXPECT_EQ(CheckNumber("0.5", 0, 0.5, false, false), "");
   EXPECT_EQ(CheckNumber("7", 1, 100, true, false), "");
   EXPECT_EQ(CheckNumber("1e-9", 0, inf, false, true), "");
-  for (const char* bad : {"nan", "NaN", "inf", "-inf", "1e999", "", "abc", "3x", "0.6", "-0.1"}) {
+  EXPECT_EQ(CheckNumber(".25", 0, 0.5, false, false), "");
+  EXPECT_EQ(CheckNumber("+2.5E-1", 0, 0.5, false, false), "");
+  for (const char* bad : {"nan", "NaN",    "inf", "-inf",     "1e999", "",      "abc", "3x",
+                          "0.6", "-0.1",   "0x0", " 0.1",     "0.1 ",  "0.1\n", "1e",  ".",
+                          "-",   "0x1p-3", "1,5", "infinity", "0.1.2", "--0.1"}) {
     EXPECT_EQ(CheckNumber(bad, 0, 0.5, false, false),
               std::string("must be a number from 0 to 0.5 (got '") + bad + "')")
         << bad;
@@ -43,6 +47,8 @@ TEST(OptionChecksTest, ANumberMustBeFiniteInRangeAndWholeWhereAsked) {
   EXPECT_EQ(CheckNumber("0", 0, inf, false, true), "must be a number > 0 (got '0')");
   EXPECT_EQ(CheckNumber("2.5", 1, 2147483647, true, false),
             "must be a whole number from 1 to 2147483647 (got '2.5')");
+  EXPECT_EQ(CheckNumber("0x10", 1, 100, true, false),
+            "must be a whole number from 1 to 100 (got '0x10')");
   EXPECT_EQ(CheckNumber("99999999999", 1, 2147483647, true, false),
             "must be a whole number from 1 to 2147483647 (got '99999999999')");
 }

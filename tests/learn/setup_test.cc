@@ -59,8 +59,12 @@ TEST(SetupTest, RejectsInvalidSettingsAndData) {
               HasSubstr("steps must be positive"));
   EXPECT_THAT(ConstructionError(data, network, with([](TrainConfig& t) { t.batch_size = -1; })),
               HasSubstr("batch_size must be positive"));
-  EXPECT_THAT(ConstructionError(data, network, with([](TrainConfig& t) { t.learning_rate = 0; })),
-              HasSubstr("learning_rate must be positive"));
+  for (const double rate : {0.0, 1e-300, -1e-3, static_cast<double>(NAN)}) {
+    EXPECT_THAT(
+        ConstructionError(data, network, with([rate](TrainConfig& t) { t.learning_rate = rate; })),
+        HasSubstr("learning_rate must be at least 1e-09"))
+        << rate;
+  }
   EXPECT_THAT(ConstructionError(data, network, with([](TrainConfig& t) { t.beacon_weight = NAN; })),
               HasSubstr("beacon_weight"));
 
