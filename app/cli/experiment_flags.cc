@@ -171,17 +171,16 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     config.train.gate_target = learn::ParseGateTarget(flags.gate_target);
   }
   if (!worlds::WorldNeedsRenderer(config.world)) {
-    // Vector observations have no pixels to shift or erase.
-    // Refused here, before anything is written into --out, rather than by the first unit.
-    if (flags.random_shift > 0) {
-      throw UserError("--random-shift: the " + config.world +
-                      " world's observations are vectors, not camera images");
+    // Vector observations have no pixels to shift or erase. Refused here, before anything is
+    // written into --out, rather than by the first unit.
+    for (const auto& [option, pixels] : {std::pair{"--random-shift", flags.random_shift},
+                                         {"--random-erase", flags.random_erase}}) {
+      if (pixels > 0) {
+        throw UserError(std::string(option) + ": the " + config.world +
+                        " world's observations are vectors, not camera images");
+      }
     }
     config.train.random_shift_px = 0;
-    if (flags.random_erase > 0) {
-      throw UserError("--random-erase: the " + config.world +
-                      " world's observations are vectors, not camera images");
-    }
     config.train.random_erase_px = 0;
   }
   config.network.action_chunk =

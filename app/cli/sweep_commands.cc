@@ -88,6 +88,15 @@ std::vector<int> UnitIndices(const std::vector<std::string>& specs, int count) {
   return indices;
 }
 
+// A plan no unit has run from and no cluster was given holds no work: a corrected command
+// replaces it (the first unit of the plan before may have refused its configuration).
+bool NothingOfThePlanRanYet(const std::string& dir) {
+  std::error_code error;
+  const fs::path units = fs::path(dir) / "units";
+  const bool no_units = !fs::exists(units, error) || fs::is_empty(units, error);
+  return !error && no_units && !fs::exists(fs::path(dir) / "slurm", error);
+}
+
 }  // namespace
 
 std::vector<std::string> SweepArguments(const std::vector<std::string>& command_line) {
@@ -128,19 +137,6 @@ experiments::ExperimentConfig ConfigOfArguments(const std::vector<std::string>& 
   }
   return ToConfig(*flags, *command);
 }
-
-namespace {
-
-// A plan no unit has run from and no cluster was given holds no work: a corrected command
-// replaces it (the first unit of the plan before may have refused its configuration).
-bool NothingOfThePlanRanYet(const std::string& dir) {
-  std::error_code error;
-  const fs::path units = fs::path(dir) / "units";
-  const bool no_units = !fs::exists(units, error) || fs::is_empty(units, error);
-  return !error && no_units && !fs::exists(fs::path(dir) / "slurm", error);
-}
-
-}  // namespace
 
 experiments::SweepPlan PlanSweep(const experiments::ExperimentConfig& config,
                                  const std::vector<std::string>& arguments, const std::string& dir,

@@ -55,10 +55,9 @@ std::string CheckNumber(const std::string& text, double min, double max, bool wh
                         bool min_exclusive) {
   const std::string range = RangeText(min, max, whole, min_exclusive);
   const std::string got = " (got '" + text + "')";
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text.c_str(), &end);
-  if (!IsPlainDecimal(text) || end == text.c_str() || *end != '\0') return range + got;
+  if (!IsPlainDecimal(text)) return range + got;
+  errno = 0;  // a plain decimal is read whole; ERANGE says it is beyond a double
+  const double value = std::strtod(text.c_str(), nullptr);
   if (!std::isfinite(value) || errno == ERANGE) return range + got;
   if (whole && value != std::floor(value)) return range + got;
   if (value < min || value > max || (min_exclusive && value <= min)) return range + got;

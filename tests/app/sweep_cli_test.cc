@@ -129,9 +129,8 @@ TEST_F(SessionCliTest, APlanNothingRanFromIsReplacedByTheCorrectedCommand) {
   CommandResult r = RunRecon(kSweep + " --plan-only --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string other =
-      "experiment dynamic2d --conditions baseline --runs 1 --tests 4 --steps 50 --baseline-steps "
-      "50 "
-      "--seed 5";
+      "experiment dynamic2d --conditions baseline --runs 1 --tests 4 --steps 50 "
+      "--baseline-steps 50 --seed 5";
   r = RunRecon(other + " --plan-only --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(ReadJson(dir / "plan.json")["units"].size(), 1u);
