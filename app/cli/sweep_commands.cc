@@ -192,7 +192,7 @@ void RunUnitsLocally(const experiments::ExperimentConfig& config,
         const experiments::UnitResult result = experiments::RunUnit(config, todo[i]);
         const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        experiments::WriteUnitResult(dir, result, seconds, host);
+        experiments::WriteUnitResult(dir, plan, result, seconds, host);
         std::lock_guard<std::mutex> lock(mutex);
         if (on_done) on_done(result);
       } catch (...) {
@@ -275,7 +275,7 @@ void AddSweepCommands(CLI::App& experiment, const GlobalOptions& global) {
       const experiments::UnitResult result = experiments::RunUnit(config, plan.units[k]);
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      experiments::WriteUnitResult(unit_flags->dir, result, seconds, host);
+      experiments::WriteUnitResult(unit_flags->dir, plan, result, seconds, host);
       std::printf("unit %d: %s, %d demos, run %d: metric %.4f (%.1f s; wrote %s)\n", k,
                   result.run.condition.c_str(), result.run.demos, result.run.run, result.run.metric,
                   seconds, experiments::UnitPath(unit_flags->dir, k).c_str());

@@ -8,6 +8,7 @@
 
 #include "devices/camera/image_file.h"
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::camera {
 
@@ -18,10 +19,6 @@ bool IsImageFile(const std::filesystem::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-}
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 }  // namespace
@@ -82,8 +79,8 @@ devices::CameraFrame ImageSequenceCamera::Capture() {
   frame.timestamp_s = static_cast<double>(next_) / options_.fps;
   frame.sequence = next_;
   if (options_.real_time) {
-    if (next_ == 0) start_s_ = SteadyNowS();
-    const double wait_s = start_s_ + frame.timestamp_s - SteadyNowS();
+    if (next_ == 0) start_s_ = SteadySeconds();
+    const double wait_s = start_s_ + frame.timestamp_s - SteadySeconds();
     if (wait_s > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait_s));
   }
   ++next_;

@@ -10,6 +10,7 @@
 #include "devices/camera/opencv_io.h"
 #include "devices/camera/undistorter.h"
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::camera {
 
@@ -28,10 +29,6 @@ bool IsIndex(const std::string& device) {
     if (c < '0' || c > '9') return false;
   }
   return true;
-}
-
-double SteadyNowS() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 // cv::VideoWriter::fourcc, which would need videoio linked: the code's four bytes, first lowest.
@@ -137,7 +134,7 @@ bool OpenCvCamera::ReadFrame(devices::CameraFrame* frame) {
   }
   double timestamp_s = 0.0;
   if (live_) {
-    timestamp_s = SteadyNowS();
+    timestamp_s = SteadySeconds();
     if (nominal_fps_ > 0.0 && last_timestamp_s_ >= 0.0) {
       const double periods = (timestamp_s - last_timestamp_s_) * nominal_fps_;
       if (periods > 1.5) {

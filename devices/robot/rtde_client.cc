@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::robot {
 
@@ -28,10 +29,6 @@ std::optional<RtdeFieldType> ExpectedType(const std::string& name) {
 }
 
 }  // namespace
-
-double SteadyNowSeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 std::vector<std::string> RtdeClient::DefaultOutputs() {
   return {"timestamp", "actual_q", "actual_qd", "robot_mode", "safety_mode", "actual_TCP_pose"};
@@ -185,7 +182,7 @@ void RtdeClient::Handle(const RtdePacket& packet) {
     ++protocol_errors_;
     return;
   }
-  const double now_s = SteadyNowSeconds();
+  const double now_s = SteadySeconds();
   RtdeState state;
   for (size_t i = 0; i < values->size(); ++i) {
     const std::string& name = recipe_.names[i];

@@ -35,9 +35,6 @@ struct RtdeState {
   int64_t sequence = 0;  ///< 1 for the first package of this connection, then 2, 3, ...
 };
 
-/// Seconds on the host's steady clock, the time base of RtdeState::received_s.
-double SteadyNowSeconds();
-
 /// A UR controller's RTDE interface (port 30004): negotiates protocol 2, reads the controller
 /// version, subscribes to `outputs` at `frequency_hz`, starts the stream, and keeps the latest
 /// state on a receive thread. Reading never blocks on the network; a lost connection shows as

@@ -7,6 +7,7 @@
 #include "devices/robot/speedj_motion.h"
 #include "devices/robot/ur_modes.h"
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::robot {
 
@@ -45,7 +46,7 @@ UrArm::UrArm(Options options) : options_(std::move(options)) {
 RtdeState UrArm::Fresh() const {
   if (!rtde_->connected()) throw UserError("the UR5 is gone: " + rtde_->last_error());
   const std::optional<RtdeState> state = rtde_->Latest();
-  const double age_s = state ? SteadyNowSeconds() - state->received_s : 1e9;
+  const double age_s = state ? SteadySeconds() - state->received_s : 1e9;
   if (age_s > options_.stale_after_s) {
     char text[160];
     std::snprintf(text, sizeof(text), "no RTDE data from %s for %.2f s (the robot went silent)",

@@ -9,14 +9,11 @@
 #include <set>
 
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::uwb {
 
 namespace {
-
-double SteadySeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 // "DECA0000000012AB", "0xdeca...", "12ab": 1-16 hex digits.
 uint64_t ParseNodeIdKey(const std::string& key) {

@@ -8,14 +8,11 @@
 #include <cstdio>
 
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::uwb {
 
 namespace {
-
-double SteadySeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 /// The bytes that arrived, printable, for an error message.
 std::string Shown(const std::string& bytes) {

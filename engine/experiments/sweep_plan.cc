@@ -206,9 +206,27 @@ std::string UnitResultText(const UnitResult& result) {
   return value.dump(1) + "\n";
 }
 
-void WriteUnitResult(const std::string& dir, const UnitResult& result, double train_seconds,
-                     const std::string& host) {
+void WriteUnitResult(const std::string& dir, const SweepPlan& plan, const UnitResult& result,
+                     double train_seconds, const std::string& host) {
   const std::string path = UnitPath(dir, result.unit.index);
+  // A unit trains for minutes, and the plan it ran from may have been replaced meanwhile (a
+  // plan nothing had run from yet is replaced without --force): its result must not be filed
+  // as a unit of the new plan.
+  const std::string unit = std::to_string(result.unit.index);
+  const std::string not_written = "; the result of unit " + unit + " was not written: run it " +
+                                  "again with `recon experiment run-unit " + dir + " --unit " +
+                                  unit + "`";
+  std::optional<SweepPlan> now;
+  try {
+    now = ReadSweepPlan(dir);
+  } catch (const UserError& e) {
+    throw UserError(std::string(e.what()) + not_written);
+  }
+  // The arguments give every unit and its seeds (ReadSweepPlan checked the rest by digest).
+  if (now->arguments != plan.arguments || now->made_by != plan.made_by) {
+    throw UserError(PlanPath(dir) + " was replaced by the plan of another sweep while unit " +
+                    unit + " ran" + not_written);
+  }
   EnsureWritableDirectory(fs::path(path).parent_path().string());
   WriteFileAtomically(path, UnitResultText(result));
   // The time goes beside it: a unit run twice writes the same result, not the same time.

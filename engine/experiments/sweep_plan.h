@@ -47,9 +47,11 @@ void WriteSweepPlan(const std::string& dir, const SweepPlan& plan);
 /// edited since it was written (its digest).
 SweepPlan ReadSweepPlan(const std::string& dir);
 
-/// Writes unit `result` into DIR/units/ atomically (the result, then its time beside it).
-void WriteUnitResult(const std::string& dir, const UnitResult& result, double train_seconds,
-                     const std::string& host);
+/// Writes unit `result`, run from `plan`, into DIR/units/ atomically (the result, then its
+/// time beside it). UserError, and nothing written, when DIR/plan.json is no longer `plan`: it
+/// was replaced by another sweep (or removed) while the unit ran.
+void WriteUnitResult(const std::string& dir, const SweepPlan& plan, const UnitResult& result,
+                     double train_seconds, const std::string& host);
 /// Unit `index`'s result; none when it is not done. UserError naming the file for one that is
 /// damaged (truncated, edited, or of another unit).
 std::optional<UnitResult> ReadUnitResult(const std::string& dir, int index);

@@ -161,18 +161,12 @@ void CheckRows(const std::vector<Row>& rows, const SessionManifest& layout,
   }
 }
 
-std::string ShapeText(const std::vector<hsize_t>& dims) {
-  std::string shape;
-  for (hsize_t d : dims) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
-  return "(" + shape + ")";
-}
-
 void CheckShape(const h5::File& file, hid_t location, const std::string& name,
                 const std::vector<hsize_t>& expected) {
   const std::vector<hsize_t> dims = h5::Dimensions(file, location, name);
   if (dims != expected) {
-    h5::Fail(file.path(), "dataset '" + name + "' has shape " + ShapeText(dims) +
-                              ", the session expects " + ShapeText(expected));
+    h5::Fail(file.path(), "dataset '" + name + "' has shape " + h5::ShapeText(dims) +
+                              ", the session expects " + h5::ShapeText(expected));
   }
 }
 

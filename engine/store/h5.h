@@ -95,6 +95,12 @@ void WriteArray(const File& file, hid_t location, const std::string& name, Eleme
 void VerifyChecksums(const File& file, hid_t location, const std::set<std::string>& already_read);
 /// The dimensions of a dataset. UserError naming `file` and `name` if it is missing.
 std::vector<hsize_t> Dimensions(const File& file, hid_t location, const std::string& name);
+/// A dataset's shape as an error message gives it: "(12, 3)".
+inline std::string ShapeText(const std::vector<hsize_t>& dims) {
+  std::string shape;
+  for (hsize_t d : dims) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
+  return "(" + shape + ")";
+}
 /// True when the dataset stores 8-bit unsigned integers (images as robomimic keeps them).
 bool IsUInt8(const File& file, hid_t location, const std::string& name);
 /// Reads a whole numeric dataset, converting to the requested type (HDF5 converts float64

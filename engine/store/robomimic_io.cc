@@ -41,12 +41,6 @@ std::vector<std::string> NumberedNames(const h5::File& file, hid_t group,
   return names;
 }
 
-std::string ShapeText(const std::vector<hsize_t>& dims) {
-  std::string text;
-  for (hsize_t d : dims) text += (text.empty() ? "" : ", ") + std::to_string(d);
-  return "(" + text + ")";
-}
-
 /// A beacon name from an obs key: "beacon_plate" -> "plate", "object-pos" -> "object_pos".
 std::string BeaconNameFromKey(const std::string& key) {
   std::string name = key.rfind("beacon_", 0) == 0 ? key.substr(7) : key;
@@ -63,7 +57,7 @@ hsize_t RowWidth(const h5::File& file, hid_t demo, const std::string& key,
   const std::vector<hsize_t> dims = h5::Dimensions(file, demo, "obs/" + key);
   if (dims.size() == 1) return 1;
   if (dims.size() == 2) return dims[1];
-  h5::Fail(file.path(), where + ": obs key '" + key + "' has shape " + ShapeText(dims) +
+  h5::Fail(file.path(), where + ": obs key '" + key + "' has shape " + h5::ShapeText(dims) +
                             "; robot state and beacon keys must be vectors per sample");
 }
 
@@ -91,7 +85,7 @@ SessionManifest ManifestFromMapping(const h5::File& file, hid_t data, const std:
     m.spec.y_shape = {static_cast<int64_t>(y_dims[1])};
   } else {
     h5::Fail(file.path(), where + ": obs key '" + mapping.y_key + "' has shape " +
-                              ShapeText(y_dims) +
+                              h5::ShapeText(y_dims) +
                               "; y must be images (N, H, W, C) or vectors (N, m)");
   }
   for (const std::string& key : mapping.beacon_keys) {
@@ -105,7 +99,7 @@ SessionManifest ManifestFromMapping(const h5::File& file, hid_t data, const std:
   m.spec.b_dim = TotalBeaconDim(m.beacons);
   const std::vector<hsize_t> u_dims = h5::Dimensions(file, demo.id(), "actions");
   if (u_dims.size() != 2) {
-    h5::Fail(file.path(), where + ": dataset 'actions' has shape " + ShapeText(u_dims) +
+    h5::Fail(file.path(), where + ": dataset 'actions' has shape " + h5::ShapeText(u_dims) +
                               "; expected (N, action size)");
   }
   m.spec.u_dim = static_cast<int>(u_dims[1]);
@@ -119,7 +113,7 @@ DemoRecord ReadMappedDemo(const h5::File& file, hid_t data, const std::string& n
   const std::string where = "data/" + name;
   const std::vector<hsize_t> u_dims = h5::Dimensions(file, demo.id(), "actions");
   if (u_dims.size() != 2 || u_dims[1] != static_cast<hsize_t>(layout.spec.u_dim)) {
-    h5::Fail(file.path(), where + ": dataset 'actions' has shape " + ShapeText(u_dims) +
+    h5::Fail(file.path(), where + ": dataset 'actions' has shape " + h5::ShapeText(u_dims) +
                               ", the first demonstration's actions have " +
                               std::to_string(layout.spec.u_dim) + " values");
   }
@@ -138,7 +132,7 @@ DemoRecord ReadMappedDemo(const h5::File& file, hid_t data, const std::string& n
     const std::vector<hsize_t> dims = h5::Dimensions(file, demo.id(), "obs/" + key);
     const hsize_t width = dims.size() == 2 ? dims[1] : 1;
     if (dims.empty() || dims[0] != n || dims.size() > 2 || width != expected_width) {
-      h5::Fail(file.path(), where + ": obs key '" + key + "' has shape " + ShapeText(dims) +
+      h5::Fail(file.path(), where + ": obs key '" + key + "' has shape " + h5::ShapeText(dims) +
                                 ", expected (" + std::to_string(n) + ", " +
                                 std::to_string(expected_width) + ")");
     }
@@ -160,7 +154,7 @@ DemoRecord ReadMappedDemo(const h5::File& file, hid_t data, const std::string& n
     const std::vector<hsize_t> dims = h5::Dimensions(file, demo.id(), key);
     if (dims != std::vector<hsize_t>{n, h, w, c}) {
       h5::Fail(file.path(), where + ": obs key '" + mapping.y_key + "' has shape " +
-                                ShapeText(dims) + ", expected " + ShapeText({n, h, w, c}));
+                                h5::ShapeText(dims) + ", expected " + h5::ShapeText({n, h, w, c}));
     }
     const std::vector<float> hwc = h5::ReadFloats(file, demo.id(), key);
     const size_t plane = h * w;
@@ -246,7 +240,7 @@ std::vector<std::string> DescribeObsKeys(const std::string& path) {
   std::vector<std::string> keys;
   for (const std::string& key : h5::ListChildren(file, obs.id())) {
     const bool bytes = h5::IsUInt8(file, obs.id(), key);
-    keys.push_back(key + " " + ShapeText(h5::Dimensions(file, obs.id(), key)) +
+    keys.push_back(key + " " + h5::ShapeText(h5::Dimensions(file, obs.id(), key)) +
                    (bytes ? " uint8" : ""));
   }
   return keys;

@@ -18,12 +18,6 @@ constexpr char kStates[] = "states";
 // 434 kB in nearly three times as long; byte shuffling made it larger (458 kB), so it is off.
 constexpr unsigned kDeflateLevel = 1;
 
-std::string ShapeText(const std::vector<hsize_t>& dims) {
-  std::string shape;
-  for (hsize_t d : dims) shape += (shape.empty() ? "" : ", ") + std::to_string(d);
-  return "(" + shape + ")";
-}
-
 /// Writes a (rows, cols) float64 matrix as one chunk, gzipped (when this HDF5 has zlib) and
 /// checksummed. The h5 wrapper writes only contiguous datasets.
 void WriteStates(const h5::File& file, hid_t group, const std::string& group_name,
@@ -58,7 +52,7 @@ std::vector<std::vector<double>> ReadStates(const h5::File& file, const std::str
   const std::string name = group_name + "/" + kStates;
   const std::vector<hsize_t> dims = h5::Dimensions(file, file.id(), name);
   if (dims.size() != 2 || dims[0] < 1 || dims[1] != static_cast<hsize_t>(state_size)) {
-    h5::Fail(file.path(), "dataset '" + name + "' has shape " + ShapeText(dims) +
+    h5::Fail(file.path(), "dataset '" + name + "' has shape " + h5::ShapeText(dims) +
                               ", expected (steps + 1, " + std::to_string(state_size) +
                               ") with the file's state_size");
   }

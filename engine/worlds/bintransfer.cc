@@ -11,16 +11,11 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
+#include "engine/worlds/scenario_streams.h"
 #include "engine/worlds/scene_assets.h"
 
 namespace recon::worlds {
 namespace {
-
-// Sub-streams of a scenario's seed (Rng::Derive), as in the 2-D worlds: the layout is the same
-// whatever the placement, noise or number of play samples.
-constexpr uint64_t kScenarioStream = 0;
-constexpr uint64_t kNoiseStream = 1;
-constexpr uint64_t kPlayStream = 2;
 
 constexpr char kScene[] = "bintransfer";
 // Objects are dropped from just above their resting height and given this long to settle.

@@ -7,23 +7,16 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
+#include "engine/worlds/scenario_streams.h"
 
 namespace recon::worlds {
 namespace {
-
-// Sub-streams of a scenario's seed (Rng::Derive). Layout and background come from their own
-// stream, so they are the same whatever the placement, noise or number of play samples.
-constexpr uint64_t kScenarioStream = 0;
-constexpr uint64_t kNoiseStream = 1;
-constexpr uint64_t kPlayStream = 2;
 
 constexpr int kBackgroundMin = 225;
 constexpr int kBackgroundMax = 255;
 constexpr double kGreen = 0.0;
 constexpr double kOlive = 5.0;
 constexpr double kRed = 10.0;
-
-double Distance(const Vec2& a, const Vec2& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
 
 // The four pixel indices {i-1, i} clamped into the image, as the reference clips them.
 std::array<int, 2> BlockIndices(double s) {

@@ -8,19 +8,9 @@
 
 #include "engine/core/error.h"
 #include "engine/core/strings.h"
+#include "engine/worlds/scenario_streams.h"
 
 namespace recon::worlds {
-namespace {
-
-// Sub-streams of a scenario's seed (Rng::Derive), as in Dynamic2D.
-constexpr uint64_t kScenarioStream = 0;
-constexpr uint64_t kNoiseStream = 1;
-constexpr uint64_t kPlayStream = 2;
-
-double Distance(const Vec2& a, const Vec2& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
-
-}  // namespace
-
 Static2D::Static2D(const Static2DOptions& options) : options_(options) {
   BeaconDim(options_.placement);  // validates the name
   if (!std::isfinite(options_.noise_sigma) || options_.noise_sigma < 0.0) {

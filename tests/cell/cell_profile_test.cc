@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-void WriteText(const fs::path& path, const std::string& text) {
+void WriteProfileText(const fs::path& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
 }
@@ -35,7 +35,7 @@ class CellProfileTest : public ::testing::Test {
 
   /// The message of ReadCellProfile on a cell.json holding `text`.
   std::string ErrorFor(const std::string& text) {
-    WriteText(dir_ / "cell.json", text);
+    WriteProfileText(dir_ / "cell.json", text);
     try {
       ReadCellProfile((dir_ / "cell.json").string());
     } catch (const UserError& e) {
@@ -45,7 +45,7 @@ class CellProfileTest : public ::testing::Test {
   }
   std::string Path() const { return (dir_ / "cell.json").string(); }
   CellProfile ReadText(const std::string& text) {
-    WriteText(dir_ / "cell.json", text);
+    WriteProfileText(dir_ / "cell.json", text);
     return ReadCellProfile(Path());
   }
 
@@ -57,7 +57,7 @@ constexpr char kMinimal[] =
         "beacons": {"ports": ["/dev/ttyACM0"]}})";
 
 TEST_F(CellProfileTest, ReadsEveryFieldAndResolvesRelativePaths) {
-  WriteText(dir_ / "cell.json", R"({
+  WriteProfileText(dir_ / "cell.json", R"({
     "camera": {"device": "scene/frames", "calibration": "camera.yaml"},
     "table_tags": "table_tags.json",
     "beacons": {"ports": ["/dev/ttyACM0", "by-id/tag"], "mode": "tlv",
@@ -84,7 +84,7 @@ TEST_F(CellProfileTest, ReadsEveryFieldAndResolvesRelativePaths) {
 }
 
 TEST_F(CellProfileTest, OptionalPartsHaveTheSimulatedCellsDefaults) {
-  WriteText(dir_ / "cell.json", kMinimal);
+  WriteProfileText(dir_ / "cell.json", kMinimal);
   const CellProfile p = ReadCellProfile(Path());
   EXPECT_EQ(p.camera.device, "/dev/video0") << "a device node is not a relative path";
   EXPECT_FALSE(p.camera.calibration.has_value());
@@ -92,7 +92,7 @@ TEST_F(CellProfileTest, OptionalPartsHaveTheSimulatedCellsDefaults) {
   EXPECT_TRUE(p.robot_base_in_table.isApprox(Eigen::Isometry3d::Identity()));
   EXPECT_EQ(p.beacons.mode, uwb::Dwm1001Mode::kLecShell);
   EXPECT_TRUE(p.beacons.names.empty());
-  WriteText(dir_ / "cell.json", R"({"camera": {"device": "0"}, "table_tags": "t.json",
+  WriteProfileText(dir_ / "cell.json", R"({"camera": {"device": "0"}, "table_tags": "t.json",
       "beacons": {"ports": ["p"]}, "robot": {"host": "ur5"}})");
   const CellProfile q = ReadCellProfile(Path());
   EXPECT_EQ(q.camera.device, "0") << "a V4L2 index stays an index";

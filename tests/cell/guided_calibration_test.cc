@@ -22,7 +22,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr int kWidth = 1280, kHeight = 960;
+constexpr int kGuidedWidth = 1280, kGuidedHeight = 960;
 constexpr double kStep_s = 0.05;  // the test's clock advances 50 ms per pass, one reading each
 
 class GuidedCalibrationTest : public ::testing::Test {
@@ -39,7 +39,7 @@ class GuidedCalibrationTest : public ::testing::Test {
   void PutPlate(double x, double y) {
     layout_.plate = {x, y};
     scene_.Arrange(layout_);
-    frame_ = renderer_->Render(scene_.scene(), "top", kWidth, kHeight);
+    frame_ = renderer_->Render(scene_.scene(), "top", kGuidedWidth, kGuidedHeight);
   }
 
   /// Passes of `seconds`, each with the frame and (unless `silent`) one reading of the beacon
@@ -62,7 +62,7 @@ class GuidedCalibrationTest : public ::testing::Test {
   }
 
   GuidedCalibration Make() {
-    return GuidedCalibration(scene_.TopCamera(kWidth, kHeight), options_);
+    return GuidedCalibration(scene_.TopCamera(kGuidedWidth, kGuidedHeight), options_);
   }
 
   TwinScene scene_;
@@ -128,7 +128,8 @@ TEST_F(GuidedCalibrationTest, APlaceTooNearAnUnseenTagAndASilentBeaconAreSaidAnd
   EXPECT_EQ(calibration.status().taken, 1);
 
   // The camera loses the tag (a hand over it: here, a blank frame): said, nothing taken.
-  const RgbImage blank{kWidth, kHeight, std::vector<uint8_t>(kWidth * kHeight * 3, 128)};
+  const RgbImage blank{kGuidedWidth, kGuidedHeight,
+                       std::vector<uint8_t>(kGuidedWidth * kGuidedHeight * 3, 128)};
   PutPlate(0.7, 0.1);
   Run(calibration, 2.0, false, &blank);
   EXPECT_EQ(calibration.status().taken, 1);

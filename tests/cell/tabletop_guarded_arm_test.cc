@@ -14,7 +14,7 @@
 namespace recon::worlds {
 namespace {
 
-std::unique_ptr<Tabletop> MakeTabletop() {
+std::unique_ptr<Tabletop> SmallImageTabletop() {
   TabletopOptions options;
   options.image_width = options.image_height = 32;
   return std::make_unique<Tabletop>(options, std::make_unique<render::MujocoRenderer>());
@@ -35,7 +35,7 @@ std::vector<float> WildAction(Rng& rng) {
 }
 
 TEST(TabletopGuardedArmTest, TheEStopHoldsTheArmWhateverItIsToldUntilReleased) {
-  auto world = MakeTabletop();
+  auto world = SmallImageTabletop();
   world->Reset(7);
   for (int t = 0; t < 20; ++t) world->Step(world->ExpertAction());
   world->guarded_arm().EngageEmergencyStop("test");
@@ -57,7 +57,7 @@ TEST(TabletopGuardedArmTest, TheEStopHoldsTheArmWhateverItIsToldUntilReleased) {
 }
 
 TEST(TabletopGuardedArmTest, TheWatchdogStopsAnArmWhoseCommandsStopped) {
-  auto world = MakeTabletop();
+  auto world = SmallImageTabletop();
   world->Reset(7);
   world->Step({0.3f, 0, 0, 0, 0, 0, 0});
   world->Advance();  // 0.1 s after the command: still in force
@@ -71,7 +71,7 @@ TEST(TabletopGuardedArmTest, TheWatchdogStopsAnArmWhoseCommandsStopped) {
 }
 
 TEST(TabletopGuardedArmTest, ARunIsBitIdenticalHoweverLongTheClockHadRun) {
-  auto fresh = MakeTabletop(), seasoned = MakeTabletop();
+  auto fresh = SmallImageTabletop(), seasoned = SmallImageTabletop();
   Rng before(8);  // seed 8: 437 steps (43.7 s of clock) in another scene first
   seasoned->Reset(3);
   for (int t = 0; t < 437; ++t) seasoned->Step(WildAction(before));

@@ -17,7 +17,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::unique_ptr<Tabletop> MakeTabletop() {
+std::unique_ptr<Tabletop> ProbeTabletop() {
   TabletopOptions options;
   options.placement = "none";  // as rollouts run
   return std::make_unique<Tabletop>(options, std::make_unique<render::MujocoRenderer>());
@@ -39,7 +39,7 @@ std::vector<float> RedCentroid(const std::vector<float>& y, int size) {
 }
 
 TEST(TabletopProbeTest, AMovedObjectIsDrawnWhereItWasPutWithEverythingElseHeld) {
-  std::unique_ptr<Tabletop> world = MakeTabletop();
+  std::unique_ptr<Tabletop> world = ProbeTabletop();
   world->Reset(7);
   const auto before = world->ObjectLayout();
   const std::vector<float> x_before = world->Observe().x;
@@ -66,7 +66,7 @@ TEST(TabletopProbeTest, AMovedObjectIsDrawnWhereItWasPutWithEverythingElseHeld) 
 }
 
 TEST(TabletopProbeTest, APolicyThatReadsTheBowlIsFoundToLookAtTheBowlNotThePlate) {
-  std::unique_ptr<Tabletop> world = MakeTabletop();
+  std::unique_ptr<Tabletop> world = ProbeTabletop();
   const int size = static_cast<int>(world->Spec().y_shape[1]);
   probe::ProbeSubject reads_bowl;
   reads_bowl.method = "bowl-reader";

@@ -20,8 +20,8 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::unique_ptr<Tabletop> MakeTabletop(const std::string& layout, double noise = 0.0,
-                                       const std::string& placement = "plate") {
+std::unique_ptr<Tabletop> ProtocolTabletop(const std::string& layout, double noise = 0.0,
+                                           const std::string& placement = "plate") {
   TabletopOptions options;
   options.placement = placement;
   options.layout = layout;
@@ -30,7 +30,7 @@ std::unique_ptr<Tabletop> MakeTabletop(const std::string& layout, double noise =
 }
 
 TEST(TabletopProtocolTest, PaperLayoutPutsThePlateAtOneOfTwoPlacesAndTheBowlAnywhere) {
-  auto world = MakeTabletop("paper");
+  auto world = ProtocolTabletop("paper");
   std::set<int> sides;
   double bowl_min_y = 1, bowl_max_y = -1;
   for (uint64_t seed = 1; seed <= 20; ++seed) {  // seeds 1-20
@@ -46,7 +46,7 @@ TEST(TabletopProtocolTest, PaperLayoutPutsThePlateAtOneOfTwoPlacesAndTheBowlAnyw
   EXPECT_GT(bowl_max_y - bowl_min_y, 0.4) << "the bowl moves across the table";
 
   // The wide layout spreads the plate along the edge.
-  auto wide = MakeTabletop("wide");
+  auto wide = ProtocolTabletop("wide");
   double min_x = 1, max_x = 0;
   for (uint64_t seed = 1; seed <= 20; ++seed) {
     wide->Reset(seed);
@@ -57,9 +57,9 @@ TEST(TabletopProtocolTest, PaperLayoutPutsThePlateAtOneOfTwoPlacesAndTheBowlAnyw
 }
 
 TEST(TabletopProtocolTest, TakesOfAConfigurationShareTheSceneAndConfigurationsAlternateSides) {
-  auto world = MakeTabletop("paper", Tabletop::kDwm1001NoiseSigma_m);
+  auto world = ProtocolTabletop("paper", Tabletop::kDwm1001NoiseSigma_m);
   EXPECT_EQ(world->DemosPerConfiguration(), 2);
-  EXPECT_EQ(MakeTabletop("wide")->DemosPerConfiguration(), 1);
+  EXPECT_EQ(ProtocolTabletop("wide")->DemosPerConfiguration(), 1);
   // Seeds 11 and 12 are two takes of configuration 0 (scene seed 11), 13 one of configuration 1.
   world->ResetTake(11, 11, 0);
   const Eigen::Vector3d plate = world->PlatePosition(), bowl = world->BowlPosition();
@@ -77,7 +77,7 @@ TEST(TabletopProtocolTest, TakesOfAConfigurationShareTheSceneAndConfigurationsAl
 }
 
 TEST(TabletopProtocolTest, RecordedDemonstrationsComeInConfigurationsOfTwo) {
-  auto world = MakeTabletop("paper");
+  auto world = ProtocolTabletop("paper");
   const std::vector<uint64_t> seeds = {21, 22, 23, 24};  // 2 configurations
   const Dataset data = RecordDemonstrations(*world, seeds, 0);
   ASSERT_EQ(data.demos.size(), 4u);
@@ -96,11 +96,11 @@ TEST(TabletopProtocolTest, RecordedDemonstrationsComeInConfigurationsOfTwo) {
     EXPECT_THAT(e.what(), HasSubstr("2 full configurations and one with 1 take"));
     EXPECT_THAT(e.what(), HasSubstr("4 or 6"));
   }
-  CheckDemosFillConfigurations(*MakeTabletop("wide"), 5, "--demos");  // one per scenario
+  CheckDemosFillConfigurations(*ProtocolTabletop("wide"), 5, "--demos");  // one per scenario
 }
 
 TEST(TabletopProtocolTest, InjectedNoiseMovesTheArmButTheLabelsStayTheTeachers) {
-  auto world = MakeTabletop("paper");
+  auto world = ProtocolTabletop("paper");
   const std::vector<uint64_t> seeds = {31, 32};
   const Dataset clean = RecordDemonstrations(*world, seeds, 0);
   const DemoNoise noise{0.05, 7};  // 0.05 rad/s, seed 7
@@ -137,7 +137,7 @@ TEST(TabletopProtocolTest, InjectedNoiseMovesTheArmButTheLabelsStayTheTeachers) 
 }
 
 TEST(TabletopProtocolTest, TheGripperHoldsTheToastOnlyWhereAParallelGripperWould) {
-  auto world = MakeTabletop("paper", 0.0, "none");
+  auto world = ProtocolTabletop("paper", 0.0, "none");
   const Eigen::Vector3d toast = world->ToastPosition();
   struct Case {
     Eigen::Vector3d offset;  // of the grip point from the toast's centre
@@ -165,7 +165,7 @@ TEST(TabletopProtocolTest, TheGripperHoldsTheToastOnlyWhereAParallelGripperWould
 }
 
 TEST(TabletopProtocolTest, FingersCloseAtTheirSpeedAndCatchWhatComesBetweenThem) {
-  auto world = MakeTabletop("paper", 0.0, "none");
+  auto world = ProtocolTabletop("paper", 0.0, "none");
   world->Reset(2);
   const Eigen::Vector3d toast = world->ToastPosition();
   // Close 1 cm above the slice (outside the window), then bring the tips down into it while the
@@ -199,7 +199,7 @@ TEST(TabletopProtocolTest, FingersCloseAtTheirSpeedAndCatchWhatComesBetweenThem)
 }
 
 TEST(TabletopProtocolTest, OutcomeDetailsTellWhetherAndHowTheGraspHappened) {
-  auto world = MakeTabletop("paper", 0.0, "none");
+  auto world = ProtocolTabletop("paper", 0.0, "none");
   world->Reset(205);
   std::map<std::string, double> d = world->OutcomeDetails();
   EXPECT_EQ(d.at("grasped"), 0.0);
@@ -225,7 +225,7 @@ TEST(TabletopProtocolTest, OutcomeDetailsTellWhetherAndHowTheGraspHappened) {
 TEST(TabletopProtocolTest, TheExpertSucceedsInEveryLayoutOfBothKinds) {
   for (const std::string layout : {"paper", "wide"}) {
     SCOPED_TRACE(layout);
-    auto world = MakeTabletop(layout, 0.0, "none");
+    auto world = ProtocolTabletop(layout, 0.0, "none");
     int succeeded = 0;
     for (uint64_t seed = 200; seed < 220; ++seed) {  // seeds 200-219
       world->Reset(seed);
@@ -242,7 +242,7 @@ TEST(TabletopProtocolTest, TheExpertSucceedsInEveryLayoutOfBothKinds) {
 // layout. Aiming at the slice's centre and closing 12 mm above it, the teacher itself had 0.3 mm
 // to spare (docs/cell.md).
 TEST(TabletopProtocolTest, ALearnerSlowerThanTheTeacherStillCatchesTheToastAtItsFirstClose) {
-  auto world = MakeTabletop("paper", 0.0, "none");
+  auto world = ProtocolTabletop("paper", 0.0, "none");
   for (uint64_t seed = 300; seed < 310; ++seed) {  // seeds 300-309
     SCOPED_TRACE(seed);
     world->Reset(seed);
@@ -275,14 +275,14 @@ TEST(TabletopProtocolTest, TheDiagnosticObservesTheObjectsTruePositionsWithoutAC
 
 TEST(TabletopProtocolTest, BadLayoutAndNoiseAreNamed) {
   try {
-    MakeTabletop("diagonal");
+    ProtocolTabletop("diagonal");
     FAIL() << "expected UserError";
   } catch (const UserError& e) {
     EXPECT_THAT(e.what(), HasSubstr("unknown tabletop layout 'diagonal' (valid: paper, wide)"));
   }
   for (double bad : {-0.01, 0.6, std::nan("")}) {
     try {
-      MakeTabletop("paper", bad);
+      ProtocolTabletop("paper", bad);
       FAIL() << "expected UserError for " << bad;
     } catch (const UserError& e) {
       EXPECT_THAT(e.what(), HasSubstr("beacon noise must be between 0 and 0.5 metres"));

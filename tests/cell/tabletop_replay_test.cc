@@ -21,7 +21,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-std::unique_ptr<Tabletop> MakeTabletop() {
+std::unique_ptr<Tabletop> ReplayTabletop() {
   TabletopOptions options;
   options.placement = "none";  // as rollouts run
   return std::make_unique<Tabletop>(options, std::make_unique<render::MujocoRenderer>());
@@ -52,7 +52,7 @@ void ExpectNear(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected, 
 }
 
 TEST(TabletopReplayTest, ShownStateRedrawsTheFrameOfItsStep) {
-  auto world = MakeTabletop();
+  auto world = ReplayTabletop();
   world->Reset(104);  // seed 104: the expert grasps, carries and releases the toast
   std::vector<Frame> frames = {Capture(*world)};
   std::vector<int> held_steps;
@@ -67,7 +67,7 @@ TEST(TabletopReplayTest, ShownStateRedrawsTheFrameOfItsStep) {
   EXPECT_EQ(static_cast<int>(frames[0].state.size()), world->ReplayStateSize());
 
   // The viewer's world starts in another scenario, so everything shown must come from the state.
-  auto viewer = MakeTabletop();
+  auto viewer = ReplayTabletop();
   uint64_t viewer_seed = 7;  // the first seed from 7 on whose plate is on the other side
   do {
     viewer->Reset(viewer_seed++);
@@ -96,7 +96,7 @@ TEST(TabletopReplayTest, ShownStateRedrawsTheFrameOfItsStep) {
 }
 
 TEST(TabletopReplayTest, WrongSizeOrNonFiniteStateIsRefusedAndChangesNothing) {
-  auto world = MakeTabletop();
+  auto world = ReplayTabletop();
   world->Reset(3);
   const std::vector<double> state = world->ReplayState();
   const RgbImage image = world->CameraImage();

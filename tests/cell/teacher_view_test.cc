@@ -41,7 +41,7 @@ Centroid MagentaCentroid(const RgbImage& image) {
   return c;
 }
 
-std::unique_ptr<Tabletop> MakeTabletop() {
+std::unique_ptr<Tabletop> TeacherViewTabletop() {
   TabletopOptions options;
   auto world = std::make_unique<Tabletop>(options, std::make_unique<render::MujocoRenderer>());
   world->ResetToLayout(1, {0.56, 0.33, 0.0}, {0.6, -0.25, 0.0});
@@ -52,7 +52,7 @@ std::unique_ptr<Tabletop> MakeTabletop() {
 // of the same free camera projects its centre: what the Record screen's crosshair and the
 // scripted person rely on.
 TEST(TeacherViewTest, TheFreeCamerasPinholeModelProjectsWhereMuJoCoDrawsIt) {
-  auto world = MakeTabletop();
+  auto world = TeacherViewTabletop();
   render::MujocoRenderer renderer;
   const Eigen::Vector3d point(0.8, -0.05, 0.0006);  // nothing stands between it and any camera
   for (const auto& [azimuth, elevation, distance] :
@@ -113,7 +113,7 @@ TEST(OrbitCameraTest, ItStaysWithinItsLimitsAndItsArrowsFollowTheView) {
 // a grasp holds (the tool floor to 5 mm below the slice's top); and the spot under the gripper on
 // the toast's top, the table's, or the plate's.
 TEST(TeacherViewTest, TheWorldSaysWhatTheGripHoldsAndWhereAGraspWorks) {
-  auto world = MakeTabletop();
+  auto world = TeacherViewTabletop();
   const auto [low, high] = world->GraspHeights();
   EXPECT_DOUBLE_EQ(low, 0.005);
   EXPECT_NEAR(high, 0.016 - 0.005, 1e-4);  // a 1.6 cm slice resting on the table

@@ -91,7 +91,7 @@ TEST(SweepPlanTest, ThePlanAndItsUnitsReadBackAndDamageIsRefusedByName) {
   EXPECT_EQ(back.described.expert_metric, plan.described.expert_metric);  // exact, not near
 
   const UnitResult result = RunUnit(config, plan.units[2]);
-  WriteUnitResult(dir.string(), result, 1.5, "node7");
+  WriteUnitResult(dir.string(), plan, result, 1.5, "node7");
   const std::optional<UnitResult> read = ReadUnitResult(dir.string(), 2);
   ASSERT_TRUE(read.has_value());
   EXPECT_EQ(UnitResultText(*read), UnitResultText(result));
@@ -121,6 +121,38 @@ TEST(SweepPlanTest, ThePlanAndItsUnitsReadBackAndDamageIsRefusedByName) {
   }
   fs::remove(PlanPath(dir.string()));
   EXPECT_THROW(ReadSweepPlan(dir.string()), UserError);
+  fs::remove_all(dir);
+}
+
+// A unit's result is filed only into the plan it ran from: a plan replaced while the unit ran
+// (a plan nothing had run from is replaced without --force) or removed gets nothing.
+TEST(SweepPlanTest, AUnitOfAReplacedPlanIsNotFiledIntoTheNewOne) {
+  const ExperimentConfig config = TwoByTwo();
+  const fs::path dir = Scratch("replaced");
+  const SweepPlan first = MakeSweepPlan(config, {"dynamic2d", "--runs", "2"}, "recon test");
+  WriteSweepPlan(dir.string(), first);
+  const UnitResult result = RunUnit(config, first.units[1]);
+  // Meanwhile another sweep's plan takes the folder.
+  const SweepPlan second =
+      MakeSweepPlan(config, {"dynamic2d", "--runs", "2", "--seed", "9"}, "recon test");
+  WriteSweepPlan(dir.string(), second);
+  try {
+    WriteUnitResult(dir.string(), first, result, 1.0, "node1");
+    ADD_FAILURE() << "a unit of the replaced plan was filed into the new one";
+  } catch (const UserError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("replaced by the plan of another sweep while unit 1 ran"));
+    EXPECT_THAT(e.what(), HasSubstr("was not written"));
+  }
+  EXPECT_FALSE(fs::exists(UnitPath(dir.string(), 1)));
+  EXPECT_FALSE(ReadUnitResult(dir.string(), 1).has_value());
+  // Removed altogether: the same.
+  fs::remove(PlanPath(dir.string()));
+  EXPECT_THROW(WriteUnitResult(dir.string(), first, result, 1.0, "node1"), UserError);
+  EXPECT_FALSE(fs::exists(UnitPath(dir.string(), 1)));
+  // Into its own plan it is filed.
+  WriteSweepPlan(dir.string(), first);
+  WriteUnitResult(dir.string(), first, result, 1.0, "node1");
+  EXPECT_TRUE(ReadUnitResult(dir.string(), 1).has_value());
   fs::remove_all(dir);
 }
 

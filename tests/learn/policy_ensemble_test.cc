@@ -32,12 +32,12 @@ NetworkConfig ChunkedNet(int chunk) {
   return network;
 }
 
-struct Rows {
+struct SampleRows {
   std::vector<std::vector<float>> xs, ys;
 };
 
-Rows FirstRows(const Dataset& data, int count) {
-  Rows rows;
+SampleRows FirstRows(const Dataset& data, int count) {
+  SampleRows rows;
   for (const Episode& e : data.demos) {
     for (const Sample& s : e.samples) {
       if (static_cast<int>(rows.xs.size()) == count) return rows;
@@ -57,7 +57,7 @@ TEST(PolicyEnsembleTest, ActionsAndChunksAreTheMeanOfTheMembers) {
   EXPECT_EQ(ensemble.ensemble_size(), 3);
   EXPECT_EQ(members[0].ensemble_size(), 1);
   EXPECT_EQ(ensemble.action_chunk(), 3);
-  const Rows rows = FirstRows(data, 6);
+  const SampleRows rows = FirstRows(data, 6);
   const auto chunks = ensemble.ActChunkBatch(rows.xs, rows.ys);
   const auto actions = ensemble.ActBatch(rows.xs, rows.ys);
   std::vector<std::vector<std::vector<float>>> member_chunks;
@@ -89,7 +89,7 @@ TEST(PolicyEnsembleTest, AnEnsembleOfOneIsItsMemberAndEnsemblesNest) {
       testing::BitwiseEqual(testing::Probe(Policy::Ensemble({a}), data), testing::Probe(a, data)));
   const Policy nested = Policy::Ensemble({Policy::Ensemble({a, b}), a});
   EXPECT_EQ(nested.ensemble_size(), 3);
-  const Rows rows = FirstRows(data, 4);
+  const SampleRows rows = FirstRows(data, 4);
   const auto got = nested.ActBatch(rows.xs, rows.ys);
   const auto pa = a.ActBatch(rows.xs, rows.ys), pb = b.ActBatch(rows.xs, rows.ys);
   for (size_t r = 0; r < got.size(); ++r) {

@@ -8,7 +8,6 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
-#include "engine/core/malloc_tuning.h"
 #include "engine/learn/architecture.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/spatial_softmax.h"
@@ -19,8 +18,6 @@ namespace {
 
 using testing::MakeImageTask;
 using testing::SmallImageNet;
-
-const bool kMallocTuned = (recon::TuneMallocForTraining(), true);
 
 // One layer over [batch][channels][h * w] planes with its own log T as the only parameter.
 struct Layer {

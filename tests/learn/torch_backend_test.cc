@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "engine/core/error.h"
-#include "engine/core/malloc_tuning.h"
 #include "engine/learn/config_json.h"
 #include "engine/learn/kernels.h"
 #include "engine/learn/learner.h"
@@ -31,8 +30,6 @@ using testing::MakeImageTask;
 using testing::MakeVectorTask;
 using testing::Probe;
 using testing::SmallImageNet;
-
-const bool kMallocTuned = (recon::TuneMallocForTraining(), true);
 
 double MaxAbs(const std::vector<float>& a) {
   double m = 0;

@@ -8,7 +8,6 @@
 #include <thread>
 
 #include "engine/core/error.h"
-#include "engine/core/malloc_tuning.h"
 #include "engine/learn/learner.h"
 #include "tests/learn/test_data.h"
 
@@ -21,10 +20,6 @@ using testing::MakeImageTask;
 using testing::MakeVectorTask;
 using testing::Probe;
 using testing::SmallImageNet;
-
-// Processes that train must tune malloc once (see malloc_tuning.h); gtest_main is ours to
-// share, so do it at static initialisation.
-const bool kMallocTuned = (recon::TuneMallocForTraining(), true);
 
 TrainConfig Steps(int steps, uint64_t seed = 1) {
   TrainConfig t;

@@ -21,14 +21,13 @@ Static2D MakeS2(const std::string& placement, double sigma = 0.0) {
   return Static2D(options);
 }
 
-double Dist(const Vec2& a, const Vec2& b) { return std::hypot(a[0] - b[0], a[1] - b[1]); }
-
 // The slot of the object lying between the other two, found from the geometry alone.
 int MiddleSlot(const std::array<Vec2, 3>& objects) {
   for (int m = 0; m < 3; ++m) {
     const Vec2& a = objects[(m + 1) % 3];
     const Vec2& b = objects[(m + 2) % 3];
-    if (std::abs(Dist(a, objects[m]) + Dist(objects[m], b) - Dist(a, b)) < 1e-9) return m;
+    if (std::abs(Distance(a, objects[m]) + Distance(objects[m], b) - Distance(a, b)) < 1e-9)
+      return m;
   }
   return -1;
 }
@@ -58,14 +57,14 @@ TEST(Static2D, CentreIsTheGeometricMiddleOfThreeObjectsOnALine) {
     const Vec2& c = s.objects[s.centre];
     const Vec2& a = s.objects[(s.centre + 1) % 3];
     const Vec2& b = s.objects[(s.centre + 2) % 3];
-    EXPECT_NEAR(Dist(a, c), Dist(b, c), 1e-9);  // equally spaced
-    EXPECT_GE(Dist(a, c), Static2D::kMinSpacing);
-    EXPECT_LE(Dist(a, c), Static2D::kMaxSpacing);
+    EXPECT_NEAR(Distance(a, c), Distance(b, c), 1e-9);  // equally spaced
+    EXPECT_GE(Distance(a, c), Static2D::kMinSpacing);
+    EXPECT_LE(Distance(a, c), Static2D::kMaxSpacing);
     EXPECT_LE(std::abs(c[0]), Static2D::kTargetHalfWidth);
     EXPECT_LE(std::abs(c[1]), Static2D::kTargetHalfWidth);
     EXPECT_LE(std::abs(s.robot[0]), Static2D::kStartHalfWidth);
     EXPECT_LE(std::abs(s.robot[1]), Static2D::kStartHalfWidth);
-    EXPECT_LE(Dist(s.robot, c), 10.0);  // reachable in 10 unit steps
+    EXPECT_LE(Distance(s.robot, c), 10.0);  // reachable in 10 unit steps
     // y lists the objects in slot order.
     const std::vector<float> y = world.Observe().y;
     for (int k = 0; k < 3; ++k) {
@@ -96,18 +95,18 @@ TEST(Static2D, ExpertReachesTheCentreWithinTenUnitSteps) {
       const double len = std::hypot(u[0], u[1]);
       ASSERT_LE(len, 1.0 + 1e-6);
       // A full unit step unless the target is closer than one unit.
-      ASSERT_NEAR(len, std::min(1.0, Dist(world.state().robot, target)), 1e-5);
+      ASSERT_NEAR(len, std::min(1.0, Distance(world.state().robot, target)), 1e-5);
       world.Step(u);
     }
     ASSERT_LT(world.EpisodeMetric(), 1e-3) << "seed " << seed;
-    ASSERT_NEAR(world.EpisodeMetric(), Dist(world.state().robot, target), 1e-12);
+    ASSERT_NEAR(world.EpisodeMetric(), Distance(world.state().robot, target), 1e-12);
   }
 }
 
 TEST(Static2D, StandingStillScoresTheStartingDistance) {
   Static2D world = MakeS2("none");
   world.Reset(3);
-  const double start = Dist(world.state().robot, world.state().objects[world.state().centre]);
+  const double start = Distance(world.state().robot, world.state().objects[world.state().centre]);
   for (int t = 0; t < 10; ++t) world.Step({0.0f, 0.0f});
   EXPECT_DOUBLE_EQ(world.EpisodeMetric(), start);
   EXPECT_GT(start, 0.0);
@@ -126,7 +125,7 @@ TEST(Static2D, BeaconsTrackTheCentreObject) {
                 (std::vector<float>{static_cast<float>(c[0]), static_cast<float>(c[1])}));
       const std::vector<float> d = distance.BeaconReading();
       ASSERT_EQ(d.size(), 1u);
-      EXPECT_NEAR(d[0], Dist(distance.state().robot, c), 1e-5);
+      EXPECT_NEAR(d[0], Distance(distance.state().robot, c), 1e-5);
       position.Step(position.ExpertAction());
       distance.Step(distance.ExpertAction());
     }
@@ -173,10 +172,11 @@ TEST(Static2D, PlayComesFromFreshRandomLayoutsWithoutChangingTheScenario) {
     for (int m = 0; m < 3; ++m) {
       const Vec2& a = objects[(m + 1) % 3];
       const Vec2& b = objects[(m + 2) % 3];
-      if (std::abs(Dist(a, objects[m]) + Dist(objects[m], b) - Dist(a, b)) < 1e-4) middle = m;
+      if (std::abs(Distance(a, objects[m]) + Distance(objects[m], b) - Distance(a, b)) < 1e-4)
+        middle = m;
     }
     ASSERT_GE(middle, 0);
-    EXPECT_NEAR(play.b[0], Dist({play.x[0], play.x[1]}, objects[middle]), 1e-4);
+    EXPECT_NEAR(play.b[0], Distance({play.x[0], play.x[1]}, objects[middle]), 1e-4);
     max_abs = std::max({max_abs, std::abs(double{play.x[0]}), std::abs(double{play.x[1]})});
     first_coordinates.insert(play.y[0]);
   }

@@ -46,7 +46,7 @@ std::string Write(const ScratchDir& dir, const std::string& name, const std::str
   return path;
 }
 
-std::string ReadError(const std::string& path) {
+std::string CalibrationError(const std::string& path) {
   try {
     ReadCameraCalibration(path);
   } catch (const UserError& e) {
@@ -149,40 +149,44 @@ TEST(CameraCalibrationFileTest, BadFilesNameTheFileAndTheKey) {
   ScratchDir dir;
   std::string path =
       Write(dir, "no_dist.yaml", Edited("distortion_coefficients:", "other_coefficients:"));
-  EXPECT_THAT(ReadError(path), HasSubstr(path + ": key 'distortion_coefficients' is missing"));
+  EXPECT_THAT(CalibrationError(path),
+              HasSubstr(path + ": key 'distortion_coefficients' is missing"));
 
   path = Write(dir, "no_width.yaml", Edited("image_width: 640", "width: 640"));
-  EXPECT_THAT(ReadError(path), HasSubstr(path + ": key 'image_width' is missing"));
+  EXPECT_THAT(CalibrationError(path), HasSubstr(path + ": key 'image_width' is missing"));
 
   path = Write(dir, "neg_height.yaml", Edited("image_height: 480", "image_height: -480"));
-  EXPECT_THAT(ReadError(path), HasSubstr("key 'image_height' must be a positive integer"));
+  EXPECT_THAT(CalibrationError(path), HasSubstr("key 'image_height' must be a positive integer"));
 
   path = Write(dir, "k2x2.yaml",
                Edited("rows: 3\n   cols: 3\n   dt: d\n   data: [ 6.0012e+02, 0., 3.1950e+02, 0., "
                       "6.0521e+02, 2.4150e+02, 0., 0., 1. ]",
                       "rows: 2\n   cols: 2\n   dt: d\n   data: [ 600., 0., 0., 600. ]"));
-  EXPECT_THAT(ReadError(path), HasSubstr(path + ": key 'camera_matrix' is 2x2, expected 3x3"));
+  EXPECT_THAT(CalibrationError(path),
+              HasSubstr(path + ": key 'camera_matrix' is 2x2, expected 3x3"));
 
   path = Write(dir, "short_data.yaml", Edited("0., 0., 1. ]", "0., 0. ]"));
-  EXPECT_THAT(ReadError(path), HasSubstr("key 'camera_matrix' holds 8 values for a 3x3 matrix"));
+  EXPECT_THAT(CalibrationError(path),
+              HasSubstr("key 'camera_matrix' holds 8 values for a 3x3 matrix"));
 
   path =
       Write(dir, "scalar.yaml", Edited("camera_matrix: !!opencv-matrix", "camera_matrix: 3\nx:"));
-  EXPECT_THAT(ReadError(path), HasSubstr("key 'camera_matrix' is not a matrix"));
+  EXPECT_THAT(CalibrationError(path), HasSubstr("key 'camera_matrix' is not a matrix"));
 
   path = Write(dir, "six.yaml",
                Edited("rows: 5\n   cols: 1\n   dt: d\n   data: [ -2.1e-01, 5.5e-02, 1.0e-03, "
                       "-2.0e-03, 0. ]",
                       "rows: 6\n   cols: 1\n   dt: d\n   data: [ 0., 0., 0., 0., 0., 0. ]"));
-  EXPECT_THAT(ReadError(path), HasSubstr("'distortion_coefficients' has 6 values; OpenCV knows"));
+  EXPECT_THAT(CalibrationError(path),
+              HasSubstr("'distortion_coefficients' has 6 values; OpenCV knows"));
 
   path = Write(dir, "garbage.yaml", "\x01\x02 {{{ [ not: yaml: at all\n\t- ]]\n");
-  EXPECT_THAT(ReadError(path), HasSubstr(path));
+  EXPECT_THAT(CalibrationError(path), HasSubstr(path));
 
   path = Write(dir, "empty.yaml", "");
-  EXPECT_THAT(ReadError(path), HasSubstr(path));
+  EXPECT_THAT(CalibrationError(path), HasSubstr(path));
 
-  EXPECT_THAT(ReadError(dir / "missing.yaml"), HasSubstr("missing.yaml: no such file"));
+  EXPECT_THAT(CalibrationError(dir / "missing.yaml"), HasSubstr("missing.yaml: no such file"));
 }
 
 TEST(CameraCalibrationFileTest, RefusesToWriteAnInvalidCalibration) {

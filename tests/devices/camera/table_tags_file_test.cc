@@ -15,7 +15,7 @@ namespace {
 using ::testing::HasSubstr;
 using testing::ScratchDir;
 
-std::string ReadError(const std::string& path) {
+std::string TableTagsError(const std::string& path) {
   try {
     ReadTableTags(path);
   } catch (const UserError& e) {
@@ -51,18 +51,18 @@ TEST(TableTagsFileTest, BadEntriesNameTheFileEntryAndField) {
     return dir / "t.json";
   };
   const std::string path = dir / "t.json";
-  EXPECT_THAT(ReadError(write("{\"tags\": [{\"id\": 1, \"size_m\": 0.05}]}")),
+  EXPECT_THAT(TableTagsError(write("{\"tags\": [{\"id\": 1, \"size_m\": 0.05}]}")),
               HasSubstr(path + ": tags[0]: \"center_m\" must be [x, y, z]"));
-  EXPECT_THAT(ReadError(write("{\"tags\": [{\"id\": 1, \"center_m\": [0, 0, 0]}]}")),
+  EXPECT_THAT(TableTagsError(write("{\"tags\": [{\"id\": 1, \"center_m\": [0, 0, 0]}]}")),
               HasSubstr("tags[0]: \"size_m\" must be a positive number"));
-  EXPECT_THAT(ReadError(write("{\"tags\": [{\"center_m\": [0,0,0], \"size_m\": 1}]}")),
+  EXPECT_THAT(TableTagsError(write("{\"tags\": [{\"center_m\": [0,0,0], \"size_m\": 1}]}")),
               HasSubstr("tags[0]: \"id\" must be a non-negative integer"));
-  EXPECT_THAT(ReadError(write("{\"tags\": [{\"id\": 1, \"center_m\": [0,0,0], \"size_m\": 1},"
-                              " {\"id\": 1, \"center_m\": [1,0,0], \"size_m\": 1}]}")),
+  EXPECT_THAT(TableTagsError(write("{\"tags\": [{\"id\": 1, \"center_m\": [0,0,0], \"size_m\": 1},"
+                                   " {\"id\": 1, \"center_m\": [1,0,0], \"size_m\": 1}]}")),
               HasSubstr("tags[1]: tag id 1 is listed twice"));
-  EXPECT_THAT(ReadError(write("{\"tags\": []}")), HasSubstr("list is empty"));
-  EXPECT_THAT(ReadError(write("[1, 2")), HasSubstr(path + ": not valid JSON"));
-  EXPECT_THAT(ReadError(dir / "none.json"), HasSubstr("cannot read the table tags file"));
+  EXPECT_THAT(TableTagsError(write("{\"tags\": []}")), HasSubstr("list is empty"));
+  EXPECT_THAT(TableTagsError(write("[1, 2")), HasSubstr(path + ": not valid JSON"));
+  EXPECT_THAT(TableTagsError(dir / "none.json"), HasSubstr("cannot read the table tags file"));
 }
 
 }  // namespace

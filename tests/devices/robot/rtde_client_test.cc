@@ -14,13 +14,14 @@
 #include "devices/robot/tcp_socket.h"
 #include "devices/robot/ur_modes.h"
 #include "engine/core/error.h"
+#include "engine/core/steady_clock.h"
 
 namespace recon::robot {
 namespace {
 
 using ::testing::HasSubstr;
 
-RtdeClient::Options Loopback(const FakeUrController& fake) {
+RtdeClient::Options ClientLoopback(const FakeUrController& fake) {
   RtdeClient::Options options;
   options.host = "127.0.0.1";
   options.port = fake.rtde_port();
@@ -31,7 +32,7 @@ TEST(RtdeClientTest, HandshakesAndStreamsTheFakesState) {
   FakeUrController fake;
   ASSERT_GT(fake.rtde_port(), 0);
   ASSERT_NE(fake.rtde_port(), fake.script_port());
-  RtdeClient client(Loopback(fake));
+  RtdeClient client(ClientLoopback(fake));
   EXPECT_EQ(client.controller_version().ToString(), "5.11.0.108");
   EXPECT_GT(client.recipe().id, 0);
   EXPECT_EQ(client.recipe().types.size(), RtdeClient::DefaultOutputs().size());
@@ -60,14 +61,14 @@ TEST(RtdeClientTest, HandshakesAndStreamsTheFakesState) {
   for (size_t i = 0; i < 6; ++i) EXPECT_NEAR(state->actual_q_rad[i], home[i], 1e-12);
   EXPECT_GT(state->controller_time_s, 0);
   EXPECT_NE(state->actual_tcp_pose[2], 0.0) << "a TCP pose from the kinematics";
-  EXPECT_LE(state->received_s, SteadyNowSeconds());
+  EXPECT_LE(state->received_s, SteadySeconds());
   EXPECT_GE(fake.data_packets_sent(), client.packets_received());
 }
 
 TEST(RtdeClientTest, SequentialClientsEachGetTheirOwnStream) {
   FakeUrController fake;
   for (int i = 0; i < 3; ++i) {
-    RtdeClient client(Loopback(fake));
+    RtdeClient client(ClientLoopback(fake));
     EXPECT_TRUE(client.WaitForData(2.0)) << "client " << i << ": " << client.last_error();
   }
   EXPECT_EQ(fake.rtde_clients(), 3);
@@ -75,7 +76,7 @@ TEST(RtdeClientTest, SequentialClientsEachGetTheirOwnStream) {
 
 TEST(RtdeClientTest, AnUnknownOutputIsNamedInTheError) {
   FakeUrController fake;
-  RtdeClient::Options options = Loopback(fake);
+  RtdeClient::Options options = ClientLoopback(fake);
   options.outputs = {"timestamp", "actual_q", "actual_joint_temperaturez"};
   try {
     RtdeClient client(options);
@@ -118,7 +119,7 @@ TEST(RtdeClientTest, ARefusedOrSilentPortIsAClearError) {
 
 TEST(RtdeClientTest, ARobotThatGoesAwayIsDetected) {
   FakeUrController fake;
-  RtdeClient client(Loopback(fake));
+  RtdeClient client(ClientLoopback(fake));
   ASSERT_TRUE(client.WaitForData(2.0));
   fake.Stop();
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(5);

@@ -23,7 +23,7 @@ namespace {
 using ::testing::HasSubstr;
 using Clock = std::chrono::steady_clock;
 
-UrArm::Options Loopback(const FakeUrController& fake) {
+UrArm::Options ArmLoopback(const FakeUrController& fake) {
   UrArm::Options options;
   options.host = "127.0.0.1";
   options.rtde_port = fake.rtde_port();
@@ -50,7 +50,7 @@ bool AtRest(const FakeUrController& fake) {
 
 TEST(UrArmTest, StreamingVelocitiesMovesTheJointsByAboutVelocityTimesTime) {
   FakeUrController fake;
-  UrArm arm(Loopback(fake));
+  UrArm arm(ArmLoopback(fake));
   EXPECT_THAT(arm.Describe(), HasSubstr("UR5 at 127.0.0.1"));
   EXPECT_THAT(arm.Describe(), HasSubstr("5.11.0.108"));
   const devices::JointState start = arm.State();
@@ -88,7 +88,7 @@ TEST(UrArmTest, StreamingVelocitiesMovesTheJointsByAboutVelocityTimesTime) {
 
 TEST(UrArmTest, StopHaltsALongCommandAndTheTimeoutHaltsAnAbandonedOne) {
   FakeUrController fake;
-  UrArm::Options options = Loopback(fake);
+  UrArm::Options options = ArmLoopback(fake);
   options.speedj_time_s = 30;  // only stopj can end this one early
   {
     UrArm arm(options);
@@ -114,7 +114,7 @@ TEST(UrArmTest, StopHaltsALongCommandAndTheTimeoutHaltsAnAbandonedOne) {
 
 TEST(UrArmTest, GripperIsToolOutputZeroAndNaNIsNeverSent) {
   FakeUrController fake;
-  UrArm arm(Loopback(fake));
+  UrArm arm(ArmLoopback(fake));
   arm.CommandGripper(true);
   EXPECT_TRUE(WaitUntil([&] { return fake.tool_output(0); }));
   EXPECT_EQ(arm.State().gripper_opening, 0.0);
@@ -137,7 +137,7 @@ TEST(UrArmTest, AProtectiveStopAtAJointLimitRefusesFurtherMotion) {
   std::array<double, 6> near_limit = FakeUrController::Options{}.home_q_rad;
   near_limit[5] = 2 * 3.14159265358979 - 0.01;
   fake.Teleport(near_limit);
-  UrArm::Options options = Loopback(fake);
+  UrArm::Options options = ArmLoopback(fake);
   options.speedj_time_s = 1.0;
   UrArm arm(options);
   arm.CommandJointVelocities({0, 0, 0, 0, 0, 0.5});
@@ -158,7 +158,7 @@ TEST(UrArmTest, AProtectiveStopAtAJointLimitRefusesFurtherMotion) {
 
 TEST(UrArmTest, ARobotThatGoesAwayIsAnErrorNamingIt) {
   FakeUrController fake;
-  UrArm arm(Loopback(fake));
+  UrArm arm(ArmLoopback(fake));
   fake.Stop();
   ASSERT_TRUE(WaitUntil([&] { return !arm.rtde().connected(); }));
   try {
@@ -170,7 +170,7 @@ TEST(UrArmTest, ARobotThatGoesAwayIsAnErrorNamingIt) {
   EXPECT_THROW(arm.CommandJointVelocities({}), UserError);
   EXPECT_THROW(arm.Stop(), UserError);
   // And one that never was.
-  UrArm::Options options = Loopback(fake);
+  UrArm::Options options = ArmLoopback(fake);
   options.timeout_s = 0.5;
   EXPECT_THROW(UrArm{options}, UserError);
 }
