@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "engine/core/digest.h"
+#include "engine/core/error.h"
+#include "engine/core/files.h"
 #include "engine/core/strings.h"
 
 namespace recon::cli {
@@ -63,17 +65,27 @@ std::string IdOfNamedCheckpoint(const store::Session& session, const std::string
 }  // namespace
 
 std::string CheckpointModelId(const std::string& path) {
+  // A checkpoint that is not a readable file has no id; its reader names what is wrong with it.
+  try {
+    RefuseNonRegularFile(path);
+  } catch (const UserError&) {
+    return "";
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) return "";
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return kCheckpointIdPrefix + DigestHex(Fnv1a(bytes));
+  uint64_t hash = kFnv1aOffset;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) {
+    hash = Fnv1a(buffer, static_cast<size_t>(in.gcount()), hash);
+  }
+  return kCheckpointIdPrefix + DigestHex(hash);
 }
 
 std::string TrainingStaleness(const store::Session& session,
                               const store::TrainingRecord& training) {
   if (IsCheckpointId(training.model_id)) {
     const std::string now = IdOfNamedCheckpoint(session, training.checkpoint);
-    if (now.empty()) return "its model " + training.checkpoint + " is gone: retrain";
+    if (now.empty()) return "its model " + training.checkpoint + " is gone or unreadable: retrain";
     if (now != *training.model_id) {
       return training.checkpoint +
              " holds another model than this record describes (a training stopped after saving "
@@ -108,12 +120,12 @@ std::string RolloutStaleness(const store::Session& session, const store::Rollout
   if (!rollouts.model_id) return "";  // from before model ids: nothing to compare
   if (IsCheckpointId(rollouts.model_id)) {
     const std::string now = IdOfNamedCheckpoint(session, rollouts.checkpoint);
-    if (now.empty()) return "the model these rollouts are of is gone: retrain";
+    if (now.empty()) return "the model these rollouts are of is gone or unreadable: retrain";
     if (now != *rollouts.model_id) {
       return "the model was retrained after these rollouts: roll it out again";
     }
   } else {
-    if (!training) return "the model these rollouts are of is gone: retrain";
+    if (!training) return "the model these rollouts are of is gone or unreadable: retrain";
     if (training->model_id != rollouts.model_id) {
       return "the model was retrained after these rollouts: roll it out again";
     }
@@ -126,7 +138,7 @@ std::string RolloutStaleness(const store::Session& session, const store::Rollout
 std::string TrialStaleness(const store::Session& session, const store::RealTrialLog& trials) {
   if (!trials.model_id) return "";
   const std::string now = CheckpointModelId(session.CheckpointPath(trials.method));
-  if (now.empty()) return "the model these trials ran is gone: retrain";
+  if (now.empty()) return "the model these trials ran is gone or unreadable: retrain";
   if (now != *trials.model_id) return "the model was retrained after these trials";
   return "";
 }

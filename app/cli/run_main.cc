@@ -2,6 +2,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <string>
 
 #include "app/cli/crash_report.h"
 #include "engine/core/error.h"
@@ -32,6 +34,14 @@ int RunMain(CLI::App& app, int argc, char** argv, const char* program,
     return code == 0 ? 0 : 2;
   } catch (const UserError& e) {
     std::fprintf(stderr, "\n%s: error: %s\n", program, e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // The file system refused a path (a link loop, a name too long, a folder where a file
+    // should be): a fault of what is on disk, said with the path, not a defect of the program.
+    std::string paths = e.path1().string();
+    if (!e.path2().empty()) paths += " -> " + e.path2().string();
+    std::fprintf(stderr, "\n%s: error: %s: %s\n", program, paths.c_str(),
+                 e.code().message().c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "\n%s: internal error: %s\n", program, e.what());

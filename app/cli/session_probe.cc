@@ -189,7 +189,17 @@ std::vector<std::string> TrainedMethods(const store::Session& session,
   std::vector<std::string> methods = asked;
   if (methods.empty()) {
     for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(session.CheckpointPath(method))) methods.push_back(method);
+      if (fs::exists(session.CheckpointPath(method))) {
+        methods.push_back(method);
+      } else if (fs::exists(session.TrainingRecordPath(method))) {
+        // Trained once, its model gone since: left out, but not without a word.
+        std::fprintf(stderr,
+                     "recon: note: %s was trained (%s) but its model %s is gone: it is left "
+                     "out; retrain it with `recon train --session %s --methods %s`\n",
+                     method, store::Session::TrainingRecordRelativePath(method).c_str(),
+                     store::Session::CheckpointRelativePath(method).c_str(), session.dir().c_str(),
+                     method);
+      }
     }
     if (methods.empty()) {
       throw UserError("session " + session.dir() + " has no trained method " + purpose +

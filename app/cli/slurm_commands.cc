@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -121,9 +120,12 @@ std::string LastWords(const std::string& text) {
 /// or the file is damaged, which loses only history: the units then read as missing).
 json ReadSubmissions(const fs::path& slurm) {
   try {
-    json jobs = json::parse(std::ifstream(slurm / "jobs.json"));
+    const std::optional<std::string> text = ReadWholeFile((slurm / "jobs.json").string());
+    if (!text) return json::array();
+    json jobs = json::parse(*text);
     if (jobs.is_array()) return jobs;
   } catch (const json::exception&) {
+  } catch (const UserError&) {
   }
   return json::array();
 }
@@ -154,10 +156,14 @@ std::map<int, std::string> SubmittedUnits(const fs::path& slurm) {
 /// from the logs, not from accounting (sacct), which many clusters and the one-node cluster
 /// do not keep.
 std::string WhyItFailed(const fs::path& slurm, const std::string& job, int unit) {
-  std::ifstream in(TaskLog(slurm, job, unit));
-  if (!in) return "no log: cancelled or refused before it started";
-  const std::string words =
-      LastWords({std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()});
+  std::optional<std::string> log;
+  try {
+    log = ReadWholeFile(TaskLog(slurm, job, unit).string());
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  if (!log) return "no log: cancelled or refused before it started";
+  const std::string words = LastWords(*log);
   return words.empty() ? "its log is empty" : words;
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -25,8 +24,6 @@
 namespace recon::cli {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 struct TrainFlags {
   std::string session;
@@ -222,30 +219,10 @@ void RunEval(const EvalFlags& flags) {
   }
   const store::Session session = store::Session::Open(flags.session);
   const store::SessionManifest& m = session.manifest();
-  std::vector<std::string> methods = flags.methods;
-  if (methods.empty()) {
-    for (const char* method : {"baseline", "recon"}) {
-      if (fs::exists(session.CheckpointPath(method))) {
-        methods.push_back(method);
-      }
-    }
-    if (methods.empty()) {
-      throw UserError("session " + flags.session +
-                      " has no trained policy: run `recon train --session " + flags.session +
-                      "` first");
-    }
-  }
-  for (const std::string& method : methods) learn::ParseMethod(method);
+  const std::vector<std::string> methods = TrainedMethods(session, flags.methods, "to roll out");
   MakeSessionWorld(m, "none");  // fails early for sessions without a simulated world
   // Every checkpoint is loaded (and so checked) before the first rollout file is replaced.
-  for (const std::string& method : methods) {
-    const std::string checkpoint = session.CheckpointPath(method);
-    if (!fs::exists(checkpoint)) {
-      throw UserError("no checkpoint " + checkpoint + ": run `recon train --session " +
-                      flags.session + " --methods " + method + "` first; no rollouts were written");
-    }
-    learn::LoadPolicy(checkpoint);
-  }
+  for (const std::string& method : methods) learn::LoadPolicy(session.CheckpointPath(method));
   // Test scenarios come from their own seed stream: never the scenarios taught.
   const uint64_t seed = flags.seed != 0 ? flags.seed : DefaultTestSeed(session);
   std::printf(

@@ -3,10 +3,12 @@
 #include "devices/camera/opencv_image.h"
 #include "devices/camera/opencv_io.h"
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace recon::camera {
 
 RgbImage ReadImage(const std::string& path) {
+  RefuseNonRegularFile(path);
   const OpenCvIo& io = LoadOpenCvIo();
   cv::Mat bgr;
   try {

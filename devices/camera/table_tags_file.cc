@@ -1,10 +1,8 @@
 #include "devices/camera/table_tags_file.h"
 
 #include <cmath>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/core/files.h"
@@ -24,11 +22,11 @@ std::vector<Eigen::Vector3d> TableTag::Corners() const {
 }
 
 std::vector<TableTag> ReadTableTags(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError("cannot read the table tags file " + path);
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError("cannot read the table tags file " + path);
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(in);
+    doc = nlohmann::json::parse(*text);
   } catch (const nlohmann::json::parse_error& e) {
     throw UserError(path + ": not valid JSON (" + e.what() + ")");
   }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -175,11 +174,11 @@ void SaveCalibration(const CalibrationReport& r, const std::string& path) {
 }
 
 CalibrationReport LoadCalibration(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw UserError("cannot read calibration " + path);
+  const std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) throw UserError("cannot read calibration " + path);
   json j;
   try {
-    j = json::parse(in);
+    j = json::parse(*text);
   } catch (const json::exception& e) {
     throw UserError("calibration " + path + " is not valid JSON: " + e.what());
   }

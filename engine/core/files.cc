@@ -11,8 +11,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "engine/core/error.h"
 
@@ -27,12 +25,66 @@ std::optional<FileStamp> StampOf(const std::string& path) {
                    static_cast<int64_t>(info.st_mtim.tv_sec) * 1000000000 + info.st_mtim.tv_nsec};
 }
 
-std::optional<std::string> ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream content;
-  content << in.rdbuf();
-  return content.str();
+namespace {
+
+// What a file system entry that is not a regular file is, in a user's words.
+std::string KindOfEntry(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a named pipe (FIFO)";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+[[noreturn]] void FailNotAFile(const std::string& path, mode_t mode) {
+  throw UserError(path + ": is " + KindOfEntry(mode) + ", not a file");
+}
+
+std::string Mebibytes(int64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.0f MiB", static_cast<double>(bytes) / (1 << 20));
+  return text;
+}
+
+}  // namespace
+
+void RefuseNonRegularFile(const std::string& path) {
+  struct stat info {};
+  if (::stat(path.c_str(), &info) != 0) return;
+  if (!S_ISREG(info.st_mode)) FailNotAFile(path, info.st_mode);
+}
+
+std::optional<std::string> ReadWholeFile(const std::string& path, int64_t max_bytes) {
+  // Non-blocking, so that a named pipe opens at once and is refused below instead of waiting.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) return std::nullopt;
+  if (!S_ISREG(info.st_mode)) FailNotAFile(path, info.st_mode);
+  const auto too_big = [&] {
+    throw UserError(path + ": is over " + Mebibytes(max_bytes) +
+                    ", more than a file read whole may be");
+  };
+  if (info.st_size > max_bytes) too_big();
+  std::string content;
+  content.reserve(static_cast<size_t>(info.st_size));
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof(buffer));
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return std::nullopt;
+    }
+    // A file that grows while it is read (or a /proc file, whose size says 0) is bounded too.
+    if (static_cast<int64_t>(content.size()) + n > max_bytes) too_big();
+    content.append(buffer, static_cast<size_t>(n));
+  }
+  return content;
 }
 
 std::string TemporarySibling(const std::string& path) {

@@ -27,9 +27,22 @@ struct FileStamp {
 /// The stamp of the file at `path`; nullopt when there is none.
 std::optional<FileStamp> StampOf(const std::string& path);
 
+/// Files read whole (JSON, scripts, plans, logs) are at most this big: a session's largest is a
+/// few megabytes, and parsing a bigger one would take many times its size in memory.
+inline constexpr int64_t kMaxWholeFileBytes = int64_t{256} << 20;
+
+/// Refuses a path that exists but is not a regular file (symbolic links are followed): a folder,
+/// a named pipe, a device or a socket. Opening a named pipe waits for a writer that never comes
+/// and a device such as /dev/zero never ends, so every reader of a file asks first. Throws
+/// UserError "<path>: is a named pipe (FIFO), not a file"; a missing path is left to the caller,
+/// which says what the file was for.
+void RefuseNonRegularFile(const std::string& path);
+
 /// The whole content of the file at `path`, byte for byte; nullopt when it cannot be opened
-/// (missing or unreadable), so that each caller names what the file was for.
-std::optional<std::string> ReadWholeFile(const std::string& path);
+/// (missing or unreadable), so that each caller names what the file was for. A path that is not a
+/// regular file (see RefuseNonRegularFile) or a file over `max_bytes` is a UserError naming it.
+std::optional<std::string> ReadWholeFile(const std::string& path,
+                                         int64_t max_bytes = kMaxWholeFileBytes);
 
 /// Creates `dir` (and parents) if needed and checks that a file can be created in it. Throws
 /// UserError naming the folder otherwise. Call before long work so it fails fast.

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 
@@ -108,10 +107,7 @@ std::string TimingPath(const std::string& unit_path) {
   return fs::path(unit_path).replace_extension(".timing.json").string();
 }
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+std::string ReadText(const std::string& path) { return ReadWholeFile(path).value_or(""); }
 
 }  // namespace
 

@@ -173,6 +173,7 @@ class Digests {
 
 // Reads and checks everything; `with_optimizer` = false drops the Adam moments (LoadPolicy).
 CheckpointContents ReadCheckpoint(const std::string& path, bool with_optimizer) {
+  RefuseNonRegularFile(path);
   if (!std::filesystem::is_regular_file(path)) {
     throw UserError("checkpoint '" + path + "' does not exist");
   }

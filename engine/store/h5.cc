@@ -188,6 +188,7 @@ File File::Create(const std::string& path) {
 }
 
 File File::OpenReadOnly(const std::string& path) {
+  RefuseNonRegularFile(path);
   SilenceAutomaticErrorPrinting();
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file.valid()) Fail(path, "cannot open as HDF5 (missing, truncated or not an HDF5 file)");

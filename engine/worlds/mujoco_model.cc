@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/files.h"
 
 namespace recon::worlds {
 
@@ -56,6 +57,7 @@ MujocoModel::~MujocoModel() = default;
 
 MujocoModel MujocoModel::FromFile(const std::string& path) {
   InstallMujocoErrorHandlers();
+  RefuseNonRegularFile(path);
   if (!std::filesystem::is_regular_file(path)) {
     throw UserError("MJCF file " + path + " does not exist");
   }

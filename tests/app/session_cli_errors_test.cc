@@ -245,4 +245,67 @@ TEST_F(SessionCliTest, ADamagedInputIsFoundBeforeAnyResultIsReplaced) {
   EXPECT_EQ(FolderBytes(session / "rollouts"), rollouts);
 }
 
+// What is not a file where a session's file should be: a named pipe (its reader would wait for a
+// writer), a link to /dev/zero (a read that never ends), a link loop. Every reader ends, names
+// the file and says what is there; a model that is gone is left out of eval with a word.
+TEST_F(SessionCliTest, WhatIsNotAFileInASessionIsRefusedByName) {
+  const fs::path session = Path("s");
+  ASSERT_EQ(Record(session, "--world dynamic2d --demos 2 --play 2").exit_code, 0);
+  CommandResult r = RunRecon("train --session " + session.string() + " --steps 20");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto replace = [](const fs::path& file, const std::string& by) {
+    fs::remove(file);
+    if (by == "fifo") {
+      ASSERT_EQ(mkfifo(file.c_str(), 0644), 0) << file;
+    } else {
+      fs::create_symlink(by, file);
+    }
+  };
+  const auto restore = [](const fs::path& file, const std::string& bytes) {
+    fs::remove(file);
+    std::ofstream(file, std::ios::binary) << bytes;
+  };
+
+  const fs::path manifest = session / "session.json";
+  const std::string manifest_bytes = ReadBytes(manifest);
+  replace(manifest, "fifo");
+  r = RunRecon("session info " + session.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(manifest.string() + ": is a named pipe (FIFO), not a file"));
+  replace(manifest, manifest.filename().string());  // a link to itself
+  r = RunRecon("train --session " + session.string() + " --steps 20");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(manifest.string()));
+  EXPECT_THAT(r.output, HasSubstr("Too many levels of symbolic links"));
+  EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
+  restore(manifest, manifest_bytes);
+
+  const fs::path demo = session / "episodes" / "demo_0.h5";
+  const std::string demo_bytes = ReadBytes(demo);
+  replace(demo, "/dev/zero");
+  const json info = Info(session);
+  ASSERT_EQ(info["damaged"].size(), 1u) << info.dump();
+  EXPECT_THAT(info["damaged"][0].value("problem", ""),
+              HasSubstr(demo.string() + ": is a device, not a file"));
+  r = RunRecon("session export " + session.string() + " --out " + Path("x.hdf5").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(demo.string()));
+  EXPECT_FALSE(fs::exists(Path("x.hdf5")));
+  restore(demo, demo_bytes);
+
+  const fs::path recon_model = session / "checkpoints" / "recon.ckpt";
+  replace(recon_model, "fifo");
+  r = RunRecon("eval --session " + session.string() + " --tests 2 --methods recon");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(recon_model.string() + ": is a named pipe (FIFO), not a file"));
+  EXPECT_FALSE(fs::exists(session / "rollouts" / "recon.json"));
+  fs::remove(recon_model);
+  r = RunRecon("eval --session " + session.string() + " --tests 2");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("recon was trained (training/recon.json) but its model "
+                                  "checkpoints/recon.ckpt is gone: it is left out"));
+  EXPECT_TRUE(fs::exists(session / "rollouts" / "baseline.json"));
+  EXPECT_FALSE(fs::exists(session / "rollouts" / "recon.json"));
+}
+
 }  // namespace

@@ -1,9 +1,11 @@
 // Temporaries of killed writers: recognised by the writer's PID, removed only once it is dead;
-// and the check that an output folder is writable, from several threads at once.
+// the check that an output folder is writable, from several threads at once; and reading whole
+// files, which refuses what is not a regular file (a named pipe would block, a device never ends).
 
 #include "engine/core/files.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,6 +14,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "engine/core/error.h"
 
 namespace recon {
 namespace {
@@ -113,6 +117,64 @@ TEST(FilesTest, ThreadsCheckTheSameOutputFolderAtOnce) {
   for (int t = 0; t < kThreads; ++t) EXPECT_EQ(failures[t], 0) << "thread " << t;
   EXPECT_TRUE(fs::is_empty(dir)) << "a write probe was left behind";
   fs::remove_all(dir.parent_path());
+}
+
+// The message `read` throws as a UserError ("" when it throws nothing or something else).
+template <typename Read>
+std::string UserErrorOf(Read read) {
+  try {
+    read();
+  } catch (const UserError& e) {
+    return e.what();
+  } catch (...) {
+    return "(not a UserError)";
+  }
+  return "";
+}
+
+TEST(FilesTest, AWholeFileIsReadByteForByteAndAMissingOneIsNone) {
+  const fs::path dir = Scratch();
+  const std::string bytes("a\0b\nc", 5);
+  std::ofstream(dir / "f.json", std::ios::binary) << bytes;
+  EXPECT_EQ(ReadWholeFile((dir / "f.json").string()), bytes);
+  EXPECT_EQ(ReadWholeFile((dir / "missing.json").string()), std::nullopt);
+  fs::remove_all(dir);
+}
+
+TEST(FilesTest, ANamedPipeADeviceAndAFolderAreRefusedByName) {
+  const fs::path dir = Scratch();
+  const std::string pipe = (dir / "session.json").string();
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0644), 0);
+  fs::create_directories(dir / "demo_0.h5");
+  const std::string folder = (dir / "demo_0.h5").string();
+  // Opening the pipe for reading would wait for a writer: the test ends only if it is refused.
+  EXPECT_EQ(UserErrorOf([&] { ReadWholeFile(pipe); }),
+            pipe + ": is a named pipe (FIFO), not a file");
+  EXPECT_EQ(UserErrorOf([&] { RefuseNonRegularFile(pipe); }),
+            pipe + ": is a named pipe (FIFO), not a file");
+  EXPECT_EQ(UserErrorOf([] { ReadWholeFile("/dev/zero"); }), "/dev/zero: is a device, not a file");
+  EXPECT_EQ(UserErrorOf([&] { ReadWholeFile(folder); }), folder + ": is a folder, not a file");
+  // A symbolic link is followed: to a device it is refused, to a file it is read.
+  fs::create_symlink("/dev/zero", dir / "zero.ckpt");
+  fs::create_symlink(dir / "f", dir / "link.json");
+  std::ofstream(dir / "f") << "{}";
+  EXPECT_EQ(UserErrorOf([&] { RefuseNonRegularFile((dir / "zero.ckpt").string()); }),
+            (dir / "zero.ckpt").string() + ": is a device, not a file");
+  EXPECT_EQ(UserErrorOf([&] { RefuseNonRegularFile((dir / "link.json").string()); }), "");
+  EXPECT_EQ(ReadWholeFile((dir / "link.json").string()), "{}");
+  // A missing path is the caller's to name.
+  EXPECT_EQ(UserErrorOf([&] { RefuseNonRegularFile((dir / "missing").string()); }), "");
+  fs::remove_all(dir);
+}
+
+TEST(FilesTest, AFileOverTheLimitOfAWholeReadIsRefusedWithTheLimit) {
+  const fs::path dir = Scratch();
+  const std::string path = (dir / "plan.json").string();
+  std::ofstream(path) << std::string(3 << 20, ' ');
+  EXPECT_EQ(UserErrorOf([&] { ReadWholeFile(path, int64_t{2} << 20); }),
+            path + ": is over 2 MiB, more than a file read whole may be");
+  EXPECT_EQ(ReadWholeFile(path, int64_t{3} << 20)->size(), size_t{3} << 20);
+  fs::remove_all(dir);
 }
 
 }  // namespace
