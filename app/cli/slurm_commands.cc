@@ -7,6 +7,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -167,8 +168,29 @@ std::string WhyItFailed(const fs::path& slurm, const std::string& job, int unit)
   return words.empty() ? "its log is empty" : words;
 }
 
+/// The sweep folder's absolute path, refused when a job script cannot carry it: a line break
+/// would end the script's line (and the rest would run as a command), and '%' is one of
+/// Slurm's file-name patterns (%j, %A), which would rename the logs.
+std::string SubmittableFolder(const std::string& dir_argument) {
+  const std::string dir = fs::absolute(dir_argument).lexically_normal().string();
+  for (const char c : dir) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '%') {
+      throw UserError("the sweep folder " + dir_argument + " cannot be submitted: its path holds " +
+                      (c == '%' ? std::string("a '%', which Slurm reads as a file-name pattern")
+                                : std::string("a line break or another control character")) +
+                      "; move it to a path without one; nothing was submitted");
+    }
+  }
+  return dir;
+}
+
+/// sbatch's command line for `script_path`: the log path goes here, not into the script.
+std::vector<std::string> SbatchArguments(const std::string& dir, const std::string& script_path) {
+  return {"sbatch", "--parsable", "--output=" + dir + "/slurm/task_%A_%a.log", script_path};
+}
+
 std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
-  const std::string dir = fs::absolute(flags.dir).lexically_normal().string();
+  const std::string dir = SubmittableFolder(flags.dir);
   const std::string recon = fs::read_symlink("/proc/self/exe").string();
   std::string script =
       "#!/bin/bash\n# A RECON Studio sweep's units as a Slurm job array "
@@ -177,7 +199,11 @@ std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units)
   script += "#SBATCH --array=" + ArraySpec(units) +
             (flags.max_parallel > 0 ? "%" + std::to_string(flags.max_parallel) : "") + "\n";
   script += "#SBATCH --cpus-per-task=" + std::to_string(flags.cpus_per_task) + "\n";
-  script += "#SBATCH --output=" + dir + "/slurm/task_%A_%a.log\n";
+  // The log path is given to sbatch on its command line (SbatchArguments), where any path
+  // arrives whole; a directive line would split it at a space.
+  script +=
+      "# Each task logs to slurm/task_<job>_<task>.log (sbatch --output, given on its "
+      "command line).\n";
   if (!flags.time.empty()) script += "#SBATCH --time=" + flags.time + "\n";
   if (!flags.partition.empty()) script += "#SBATCH --partition=" + flags.partition + "\n";
   script += "set -eu\n";
@@ -219,8 +245,14 @@ void Submit(const SubmitFlags& flags) {
     return;
   }
   const std::string script = ArrayScript(flags, todo);
+  const std::string dir = SubmittableFolder(flags.dir);
   if (flags.dry_run) {
-    std::printf("%s", script.c_str());
+    std::string command;
+    for (const std::string& word : SbatchArguments(dir, "SCRIPT")) {
+      command += (command.empty() ? "" : " ") + Quoted(word);
+    }
+    // The script first (sbatch wants "#!" on its first line), then how it would be submitted.
+    std::printf("%s# submit with: %s\n", script.c_str(), command.c_str());
     return;
   }
   const fs::path slurm = fs::path(flags.dir) / "slurm";
@@ -229,7 +261,7 @@ void Submit(const SubmitFlags& flags) {
   while (fs::exists(slurm / ("array_" + std::to_string(submission) + ".sbatch"))) ++submission;
   const fs::path script_path = slurm / ("array_" + std::to_string(submission) + ".sbatch");
   WriteFileAtomically(script_path.string(), script);
-  const ProgramResult r = RunProgram({"sbatch", "--parsable", script_path.string()});
+  const ProgramResult r = RunProgram(SbatchArguments(dir, script_path.string()));
   if (r.exit_code != 0) {
     std::error_code ignored;
     fs::remove(script_path, ignored);
@@ -313,8 +345,24 @@ void AddSlurmCommands(CLI::App& experiment) {
       "job array (DIR must be on a file system every node sees)");
   submit->add_option("dir", flags->dir, "the sweep's folder (its plan.json)")->required();
   submit->add_flag("--slurm", flags->slurm, "submit to Slurm (sbatch)")->required();
-  submit->add_option("--partition", flags->partition, "the partition (default: the cluster's)");
-  submit->add_option("--time", flags->time, "each task's time limit, as sbatch takes it");
+  // Both go into the job script's #SBATCH lines: only what Slurm accepts there, so that no
+  // value can end a line and add a command to the script.
+  submit->add_option("--partition", flags->partition, "the partition (default: the cluster's)")
+      ->check([](const std::string& value) -> std::string {
+        static const std::regex kPartitions("[A-Za-z0-9_.-]+(,[A-Za-z0-9_.-]+)*");
+        return std::regex_match(value, kPartitions)
+                   ? ""
+                   : "a partition name (letters, digits, '_', '.', '-'; several joined by ',')";
+      });
+  submit->add_option("--time", flags->time, "each task's time limit, as sbatch takes it")
+      ->check([](const std::string& value) -> std::string {
+        static const std::regex kTime("([0-9]+-)?[0-9]+(:[0-9]+){0,2}|UNLIMITED|INFINITE");
+        return std::regex_match(value, kTime)
+                   ? ""
+                   : "a time limit as sbatch takes it: minutes, minutes:seconds, "
+                     "hours:minutes:seconds, days-hours, days-hours:minutes or "
+                     "days-hours:minutes:seconds";
+      });
   submit->add_option("--cpus-per-task", flags->cpus_per_task, "cores per unit (its threads)")
       ->check(WholeBetween(1, 256))
       ->capture_default_str();

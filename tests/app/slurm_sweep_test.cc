@@ -114,11 +114,11 @@ TEST_F(SlurmSweepTest, AJobArrayGivesTheLocalRunsResultsByteForByte) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.output, HasSubstr("invalid partition"));
   EXPECT_THAT(r.output, HasSubstr("nothing was submitted"));
-  // A time limit the cluster cannot read: its words again, and no submission is recorded.
+  // A time limit in none of sbatch's forms: refused before the cluster is asked, with the
+  // forms it takes, and no submission is recorded.
   r = RunRecon("experiment submit " + (root_ / "refused").string() + " --slurm --time soon");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_THAT(r.output, HasSubstr("--time"));
-  EXPECT_THAT(r.output, HasSubstr("nothing was submitted"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--time: a time limit as sbatch takes it"));
   EXPECT_FALSE(fs::exists(root_ / "refused" / "slurm" / "jobs.json"));
   r = RunRecon("experiment status " + (root_ / "refused").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;

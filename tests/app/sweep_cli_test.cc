@@ -156,5 +156,52 @@ TEST_F(SessionCliTest, APlanNothingRanFromIsReplacedByTheCorrectedCommand) {
   EXPECT_EQ(ReadJson(sent / "plan.json")["units"].size(), 6u);
 }
 
+// `text` quoted for the shell the test's commands run in (a line break stays inside the quotes).
+std::string ShellQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// `submit` writes a job script that a shell runs: a folder with a space arrives whole, and
+// nothing a user gives (a folder with a line break, --time, --partition) can end one of its
+// lines and add a command.
+TEST_F(SessionCliTest, ASubmittedScriptCarriesAnyFolderAndNoAddedCommand) {
+  const fs::path spaced = Path("my sweep");
+  CommandResult r = RunRecon(kSweep + " --plan-only --out " + ShellQuoted(spaced.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string submit = "experiment submit " + ShellQuoted(spaced.string()) + " --slurm ";
+  r = RunRecon(submit + "--dry-run --time 1-2:30 --partition gpu,cpu");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("#!/bin/bash\n", 0), 0u) << r.output;  // sbatch wants it first
+  EXPECT_THAT(r.output, HasSubstr("run-unit '" + spaced.string() + "' --unit"));
+  EXPECT_THAT(r.output,
+              HasSubstr("'--output=" + spaced.string() + "/slurm/task_%A_%a.log' 'SCRIPT'"));
+  EXPECT_THAT(r.output, HasSubstr("#SBATCH --time=1-2:30\n#SBATCH --partition=gpu,cpu\n"));
+
+  const std::string injected = "\ntouch " + Path("added").string();
+  for (const std::string& option : {"--time", "--partition"}) {
+    r = RunRecon(submit + "--dry-run " + option + " " + ShellQuoted("1" + injected));
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(option + ": a ")) << r.output;
+    EXPECT_THAT(r.output, Not(HasSubstr("#!/bin/bash")));
+  }
+
+  const fs::path broken = Path("sweep" + injected);
+  r = RunRecon(kSweep + " --plan-only --out " + ShellQuoted(broken.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("experiment submit " + ShellQuoted(broken.string()) + " --slurm --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("its path holds a line break"));
+  EXPECT_THAT(r.output, Not(HasSubstr("#!/bin/bash")));
+  const fs::path percent = Path("sweep_%j");
+  r = RunRecon(kSweep + " --plan-only --out " + percent.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("experiment submit " + percent.string() + " --slurm --dry-run");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("Slurm reads as a file-name pattern"));
+  EXPECT_FALSE(fs::exists(Path("added")));
+}
+
 }  // namespace
 }  // namespace recon::session_cli_testing
