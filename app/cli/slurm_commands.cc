@@ -189,8 +189,9 @@ std::vector<std::string> SbatchArguments(const std::string& dir, const std::stri
   return {"sbatch", "--parsable", "--output=" + dir + "/slurm/task_%A_%a.log", script_path};
 }
 
-std::string ArrayScript(const SubmitFlags& flags, const std::vector<int>& units) {
-  const std::string dir = SubmittableFolder(flags.dir);
+/// The job script of `units` of the sweep in `dir` (its SubmittableFolder).
+std::string ArrayScript(const SubmitFlags& flags, const std::string& dir,
+                        const std::vector<int>& units) {
   const std::string recon = fs::read_symlink("/proc/self/exe").string();
   std::string script =
       "#!/bin/bash\n# A RECON Studio sweep's units as a Slurm job array "
@@ -244,8 +245,8 @@ void Submit(const SubmitFlags& flags) {
         done_count, plan.units.size(), flags.dir.c_str());
     return;
   }
-  const std::string script = ArrayScript(flags, todo);
   const std::string dir = SubmittableFolder(flags.dir);
+  const std::string script = ArrayScript(flags, dir, todo);
   if (flags.dry_run) {
     std::string command;
     for (const std::string& word : SbatchArguments(dir, "SCRIPT")) {

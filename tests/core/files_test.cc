@@ -15,12 +15,13 @@
 #include <thread>
 #include <vector>
 
-#include "engine/core/error.h"
+#include "tests/support/user_error_of.h"
 
 namespace recon {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::UserErrorOf;
 
 /// The PID of a process that has exited (a child that was reaped).
 pid_t DeadPid() {
@@ -117,19 +118,6 @@ TEST(FilesTest, ThreadsCheckTheSameOutputFolderAtOnce) {
   for (int t = 0; t < kThreads; ++t) EXPECT_EQ(failures[t], 0) << "thread " << t;
   EXPECT_TRUE(fs::is_empty(dir)) << "a write probe was left behind";
   fs::remove_all(dir.parent_path());
-}
-
-// The message `read` throws as a UserError ("" when it throws nothing or something else).
-template <typename Read>
-std::string UserErrorOf(Read read) {
-  try {
-    read();
-  } catch (const UserError& e) {
-    return e.what();
-  } catch (...) {
-    return "(not a UserError)";
-  }
-  return "";
 }
 
 TEST(FilesTest, AWholeFileIsReadByteForByteAndAMissingOneIsNone) {

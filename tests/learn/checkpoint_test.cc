@@ -20,6 +20,7 @@
 #include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "tests/learn/test_data.h"
+#include "tests/support/user_error_of.h"
 
 namespace recon::learn {
 namespace {
@@ -30,6 +31,7 @@ using testing::MakeImageTask;
 using testing::MakeVectorTask;
 using testing::Probe;
 using testing::SmallImageNet;
+using recon::testing::UserErrorOf;
 
 std::string TempPath(const std::string& name) {
   return (std::filesystem::path(::testing::TempDir()) / ("recon_learn_" + name)).string();
@@ -40,17 +42,6 @@ TrainConfig ShortAuthors(int steps) {
   t.steps = steps;
   t.restart_rule = false;
   return t;
-}
-
-// The message of the UserError thrown by f ("" if none).
-template <typename F>
-std::string UserErrorOf(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  return "";
 }
 
 torch::Tensor ReadTensor(const std::string& path, const std::string& key) {
