@@ -288,6 +288,15 @@ CLI::App* AddWorldOptions(CLI::App& experiment, const std::string& world, const 
                      "noise injected into the executed joint velocities while demonstrating "
                      "(DART), rad/s; 0 = off (the default)")
         ->check(NumberBetween(0, kMaxDemoNoise_rad_s));
+    command->add_flag("--keep-pauses", flags->keep_pauses,
+                      "train on the demonstrations' pauses too (commands that move nothing and "
+                      "change nothing), which the recipe leaves out; both methods alike");
+    command
+        ->add_option("--teacher", flags->teacher,
+                     "who gives the demonstrations: expert (the scripted teacher) or person (a "
+                     "simulated person at the keyboard: reaction times, overshoot, pauses, "
+                     "missed grasps; docs/learning.md)")
+        ->capture_default_str();
     command
         ->add_option("--observation", flags->observation,
                      "image (the camera) or state (the objects' true positions: a diagnostic of "

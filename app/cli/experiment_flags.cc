@@ -85,6 +85,15 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     // Given values win (their option's check has refused absurd ones).
     config.demo_noise =
         given("--demo-noise") ? flags.demo_noise : worlds::DefaultDemoNoise(flags.world);
+    const auto& teachers = experiments::ExperimentTeachers();
+    if (std::find(teachers.begin(), teachers.end(), flags.teacher) == teachers.end()) {
+      throw UserError("--teacher must be one of " + JoinNames(teachers) + "; got '" +
+                      flags.teacher + "'");
+    }
+    if (flags.teacher == "person" && config.world != "tabletop") {
+      throw UserError("--teacher person teaches from the camera only (--observation image)");
+    }
+    config.teacher = flags.teacher;
   }
   config.demos = flags.demos;
   config.runs = flags.runs;
@@ -99,6 +108,7 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   // The world's recipe (recipe.h) for what the user did not set explicitly.
   const experiments::WorldRecipe recipe =
       experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
+  if (!flags.keep_pauses) config.pause_motion = recipe.pause_motion;
   if (flags.authors_recipe) {
     config.train = learn::AuthorsRecipe();
   } else {

@@ -18,6 +18,7 @@
 #include "engine/core/error.h"
 #include "engine/core/files.h"
 #include "engine/core/parallel_for.h"
+#include "engine/core/pauses.h"
 #include "engine/core/rng.h"
 #include "engine/core/stats.h"
 #include "engine/experiments/evaluation.h"
@@ -78,6 +79,22 @@ SessionTrainingOptions WithRecipeDefaults(const store::Session& session,
   return options;
 }
 
+namespace {
+
+/// Per named episode, whether a person gave it (the keyboard, a gamepad, a real cell's teleop):
+/// everything but the scripted teacher, whose commands that move nothing are deliberate waits.
+std::vector<bool> TakenByAPerson(const store::Session& session,
+                                 const std::vector<std::string>& names) {
+  std::vector<bool> person;
+  for (const std::string& name : names) {
+    if (name.rfind("demo_", 0) != 0) continue;  // play chunks are not demonstrations
+    person.push_back(session.Find(name).meta.source != "scripted-teleop");
+  }
+  return person;
+}
+
+}  // namespace
+
 store::TrainingRecord TrainSessionMethod(
     const store::Session& session, const std::string& method, const SessionTrainingOptions& flags,
     const std::function<void(const TrainingProgress&)>& on_progress,
@@ -89,7 +106,7 @@ store::TrainingRecord TrainSessionMethod(
   options.split = store::Split::kTrain;
   options.include_bad = flags.include_bad;
   options.include_play = recon && !!flags.use_play;
-  const Dataset data = session.LoadDataset(options);
+  Dataset data = session.LoadDataset(options);
   const std::vector<std::string> trained_on = session.DatasetEpisodeNames(options);
   if (data.demos.empty()) {
     throw UserError("session " + session.dir() +
@@ -99,9 +116,16 @@ store::TrainingRecord TrainSessionMethod(
   const bool play = !data.play.empty();
   options.split = store::Split::kValid;
   options.include_play = false;
-  const Dataset valid = session.LoadDataset(options);
+  Dataset valid = session.LoadDataset(options);
 
   experiments::WorldRecipe recipe = experiments::RecipeForWorld(m.world, m.y_encoding == "uint8");
+  // A person's pauses are left out where the recipe says so (pauses.h), from both splits.
+  if (!flags.keep_pauses && !recipe.pause_motion.empty()) {
+    data = WithoutPauses(data, recipe.pause_motion, nullptr, TakenByAPerson(session, trained_on));
+    options.split = store::Split::kValid;
+    valid = WithoutPauses(valid, recipe.pause_motion, nullptr,
+                          TakenByAPerson(session, session.DatasetEpisodeNames(options)));
+  }
   learn::NetworkConfig network = recipe.network;
   network.feature_dim = flags.feature_dim;
   learn::TrainConfig train = recipe.train;
@@ -193,6 +217,16 @@ store::TrainingRecord TrainSessionMethod(
   return record;
 }
 
+int SessionRolloutSteps(const store::Session& session, const worlds::World& world,
+                        std::string* note) {
+  // The kept demonstrations a model learns from: a slow teacher's policy is as slow.
+  std::vector<int64_t> lengths;
+  for (const store::EpisodeEntry& e : session.demos()) {
+    if (e.problem.empty() && !e.flags.bad) lengths.push_back(e.meta.num_samples);
+  }
+  return experiments::RolloutSteps(world, lengths, experiments::kRolloutFactor, note);
+}
+
 store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
                                             const std::string& method, int tests, uint64_t seed,
                                             bool keep_replay,
@@ -213,8 +247,9 @@ store::RolloutSummary EvaluateSessionMethod(const store::Session& session,
   const std::string model_id = CheckpointModelId(checkpoint);
   const learn::Policy policy = learn::LoadPolicy(checkpoint);
   const auto start = std::chrono::steady_clock::now();
+  const int steps = SessionRolloutSteps(session, *probe);
   std::vector<experiments::ScenarioOutcome> outcomes =
-      experiments::EvaluatePolicy(make_world, policy, seeds, keep_replay, hooks);
+      experiments::EvaluatePolicy(make_world, policy, seeds, keep_replay, hooks, nullptr, steps);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const std::vector<double> metrics = experiments::Metrics(outcomes);

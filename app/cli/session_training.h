@@ -24,6 +24,9 @@ struct SessionTrainingOptions {
   std::string loss = "nll";
   bool use_play = true;  ///< RECON trains its beacon net on the session's play data too
   bool include_bad = false;
+  /// Train on a person's pauses too; by default the world's recipe leaves them out
+  /// (WorldRecipe::pause_motion).
+  bool keep_pauses = false;
 };
 
 /// Where a training run is, reported every few steps.
@@ -60,6 +63,12 @@ store::TrainingRecord TrainSessionMethod(
     const store::Session& session, const std::string& method, const SessionTrainingOptions& options,
     const std::function<void(const TrainingProgress&)>& on_progress = {},
     const std::atomic<bool>* cancel = nullptr);
+
+/// How many steps the session's rollouts run: the world's episode, or 1.5 times its longest kept
+/// demonstration (experiments::RolloutSteps), which a person's slow takes ask for. `note` says
+/// when the takes asked for more than the most a rollout is given.
+int SessionRolloutSteps(const store::Session& session, const worlds::World& world,
+                        std::string* note = nullptr);
 
 /// Rolls `method`'s checkpoint out on `tests` new scenes of the session's simulated cell with the
 /// beacons removed (scene i from Rng::Derive(seed, i)), writes the method's rollout summary and

@@ -36,6 +36,7 @@ struct TrainFlags {
   std::string loss = "nll";
   bool no_play = false;
   bool include_bad = false;
+  bool keep_pauses = false;
 };
 
 void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
@@ -61,6 +62,7 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
   options.loss = flags.loss;
   options.use_play = !flags.no_play;
   options.include_bad = flags.include_bad;
+  options.keep_pauses = flags.keep_pauses;
   // Every episode any method will read is read once before the first checkpoint is replaced: a
   // damaged play chunk must not surface after the Baseline's checkpoint was already rewritten.
   {
@@ -282,6 +284,9 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
       ->check(SeedNumber());
   train->add_flag("--no-play", flags->no_play, "train RECON without the session's play data");
   train->add_flag("--include-bad", flags->include_bad, "also train on demonstrations marked bad");
+  train->add_flag("--keep-pauses", flags->keep_pauses,
+                  "also train on a person's pauses (commands that move nothing and change "
+                  "nothing), which the tabletop's recipe leaves out");
   train->callback([flags, &global] { RunTrain(*flags, global); });
 
   auto eval_flags = std::make_shared<EvalFlags>();

@@ -93,6 +93,10 @@ class CellSource {
   /// cell::GuidedCalibration), rather than the cell running it by itself as a job (the
   /// simulated cell's scripted teacher).
   virtual bool GuidesCalibration() const { return false; }
+  /// Where a beacon is fixed and cannot be moved by the teacher (the simulated tabletop's stands
+  /// beside the plate), or nullopt where the teacher sticks it on whatever they mark (a real
+  /// cell: the readings come from where it is, the label is the teacher's word).
+  virtual std::optional<std::string> FixedBeaconObject() const { return std::nullopt; }
   /// Starts a guided calibration of `points` places; UserError when it cannot run here now.
   virtual void StartGuidedCalibration(int /*points*/) {
     throw UserError("this cell calibrates by itself");

@@ -4,9 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "devices/cell/scene_camera.h"
+#include "engine/teach/cartesian_teleop.h"
 
 namespace recon::studio {
 
@@ -24,10 +27,27 @@ ui::BeaconView BeaconViewOf(const BeaconSpec& beacon, const store::SessionManife
 
 namespace {
 
+// Half the open fingers' span: how long the jaw's axis is drawn either side of the spot.
+constexpr double kJawHalfSpan_m = 0.064;
+
 /// Where `camera` shows table point `p`, as the snapshot keeps pixels.
 std::array<float, 2> PixelOf(const tags::PinholeCamera& camera, const Eigen::Vector3d& p) {
   const Eigen::Vector2d px = camera.Project(p);
   return {static_cast<float>(px.x()), static_cast<float>(px.y())};
+}
+
+/// The jaw's closing axis through the point the drop line lands on, as long as the open fingers
+/// span: a grasp holds what lies on this line between them (Ur5Arm::AlignmentWith), so a person
+/// lines the toast up with it, or turns the wrist until it crosses the toast.
+std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> JawEnds(const worlds::Tabletop& world) {
+  const auto a = world.arm().AlignmentWith("toast");
+  if (!a) return std::nullopt;
+  Eigen::Vector3d axis = a->closing_axis;
+  axis.z() = 0;
+  if (axis.norm() < 1e-6) return std::nullopt;
+  axis = kJawHalfSpan_m * axis.normalized();
+  const Eigen::Vector3d foot = world.SurfaceBelowGrip() + Eigen::Vector3d(0, 0, 0.0006);
+  return std::make_pair(foot - axis, foot + axis);
 }
 
 }  // namespace
@@ -44,6 +64,10 @@ void ShowTabletopView(worlds::Tabletop& world, worlds::SceneRenderer& renderer, 
     s.objects.push_back({name, px[0], px[1]});
   };
   s.grip_pixel = pixel(world.arm().GripPosition());
+  if (const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> jaw = JawEnds(world)) {
+    const std::array<float, 2> a = pixel(jaw->first), b = pixel(jaw->second);
+    s.jaw_camera_pixels = {a[0], a[1], b[0], b[1]};
+  }
   object("plate", world.PlatePosition());
   object("bowl", world.BowlPosition());
   object("toast", world.ToastPosition());
@@ -78,6 +102,14 @@ void ShowTeacherView(worlds::Tabletop& world, worlds::SceneRenderer& renderer,
     markers.push_back({worlds::SceneMarker::Shape::kLine, grip, foot, 0.0015, kMarker});
   }
   markers.push_back({worlds::SceneMarker::Shape::kDisc, foot, foot, 0.012, kMarker});
+  // The jaw's closing axis through the spot (JawEnds), also drawn over the view by the screen.
+  constexpr std::array<float, 4> kJaw = {0.1f, 0.85f, 0.95f, 0.95f};
+  Eigen::Vector3d jaw_a = foot, jaw_b = foot;
+  if (const auto jaw = JawEnds(world)) {
+    jaw_a = jaw->first;
+    jaw_b = jaw->second;
+    markers.push_back({worlds::SceneMarker::Shape::kLine, jaw_a, jaw_b, 0.002, kJaw});
+  }
   ui::TeacherView& view = s.teacher_view;
   view.available = true;
   view.image = renderer.RenderOrbit(world.scene(), camera, markers, width, height);
@@ -88,6 +120,8 @@ void ShowTeacherView(worlds::Tabletop& world, worlds::SceneRenderer& renderer,
   const tags::PinholeCamera pinhole = cell::OrbitSceneCamera(world.scene(), shown, width, height);
   view.grip_pixel = PixelOf(pinhole, grip);
   view.spot_pixel = PixelOf(pinhole, foot);
+  const std::array<float, 2> a = PixelOf(pinhole, jaw_a), b = PixelOf(pinhole, jaw_b);
+  view.jaw_pixels = {a[0], a[1], b[0], b[1]};
 }
 
 ui::GripView GripViewOf(const worlds::Tabletop& world) {
@@ -110,6 +144,19 @@ ui::GripView GripViewOf(const worlds::Tabletop& world) {
   const auto [low, high] = world.GraspHeights();
   grip.grasp_min_m = static_cast<float>(low);
   grip.grasp_max_m = static_cast<float>(high);
+  if (const auto a = world.arm().AlignmentWith("toast")) {
+    grip.alignment_known = true;
+    grip.off_axis_m = static_cast<float>(std::abs(a->along_closing_m));
+    grip.off_axis_window_m = static_cast<float>(a->closing_window_m);
+    grip.beyond_pads_m = static_cast<float>(std::abs(a->along_faces_m));
+    grip.beyond_pads_window_m = static_cast<float>(a->faces_window_m);
+    grip.object_distance_m =
+        static_cast<float>((world.arm().GripPosition() - world.ToastPosition()).head<2>().norm());
+  }
+  const safety::SafetyLimits& limits = world.safety_limits();
+  grip.wrist_turn_deg = static_cast<float>(
+      teach::WristTurn(world.arm().JointPositions(), teach::TeleopArmOf(limits)) * 180.0 / M_PI);
+  grip.wrist_limit_deg = static_cast<float>(teach::kMaxWristTurn_rad * 180.0 / M_PI);
   return grip;
 }
 

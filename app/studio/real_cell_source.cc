@@ -7,6 +7,7 @@
 #include "app/studio/cell_view.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
+#include "engine/teach/cartesian_teleop.h"
 
 namespace recon::studio {
 
@@ -116,6 +117,10 @@ void RealCellSource::ShowArm(const worlds::World&, ui::StudioSnapshot& s) const 
   s.gripper_closed = state->gripper_opening < 0.5;
   // A real gripper here reports its opening only: closed, it may or may not hold the toast.
   s.grip.state = s.gripper_closed ? ui::GripState::kUnknown : ui::GripState::kOpen;
+  s.grip.wrist_turn_deg = static_cast<float>(
+      teach::WristTurn(state->position_rad, teach::TeleopArmOf(cell_->arm()->envelope().limits())) *
+      180.0 / M_PI);
+  s.grip.wrist_limit_deg = static_cast<float>(teach::kMaxWristTurn_rad * 180.0 / M_PI);
 }
 
 void RealCellSource::ShowDevices(ui::StudioSnapshot& s) const {

@@ -28,6 +28,7 @@ class SimulatedCellSource final : public CellSource {
   void DescribeInto(store::SessionManifest&) const override {}
   std::unique_ptr<worlds::World> MakeSessionWorld(const store::Session& session) override;
 
+  std::optional<std::string> FixedBeaconObject() const override { return "plate"; }
   bool HasScriptedTeacher() const override { return true; }
   Eigen::Vector3d TeleopVelocity(worlds::World& world, const ui::TeleopInput& input, ViewSize view,
                                  const worlds::OrbitCamera& teacher_view,

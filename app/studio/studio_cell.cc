@@ -158,6 +158,7 @@ void StudioCell::Tick() {
     const bool paced = options_.real_time || teleop_mode_ != ui::TeleopMode::kScripted;
     if (!paced || now >= next_tick_) {
       next_tick_ = now + kControlPeriod;
+      if (teleop_mode_ == ui::TeleopMode::kKeyboard) ShapeKeyboardTeleop(now);
       recorder_->Tick();
       arm_health_.Add(Seconds(now));
       if (const Sample* last = recorder_->last()) last_reading_ = last->b;
@@ -185,6 +186,7 @@ void StudioCell::Tick() {
   }
   if (playback_) playback_->Tick(now);
   ApplyFinishedJob();
+  CheckOpener();
 }
 
 bool StudioCell::Busy() const {
@@ -211,6 +213,18 @@ void StudioCell::ReloadPlayback() {
   }
 }
 
+void StudioCell::ShapeKeyboardTeleop(Clock::time_point now) {
+  const std::array<float, teach::KeyRamp::kChannels> share = key_ramp_.Period(Seconds(now));
+  ui::TeleopInput shaped;
+  shaped.screen_right = share[0];
+  shaped.screen_up = share[1];
+  shaped.raise = share[2];
+  const ViewSize view{options_.view_width, options_.view_height};
+  teleop_command_.velocity_m_s =
+      source_->TeleopVelocity(*world_, shaped, view, teacher_view_, kTeleopSpeed_m_s);
+  teleop_command_.wrist_turn_rad_s = share[3] * teach::kWristTurnSpeed_rad_s;
+}
+
 double StudioCell::Seconds(Clock::time_point t) const {
   return std::chrono::duration<double>(t - started_).count();
 }
@@ -223,8 +237,9 @@ void StudioCell::ApplyFinishedJob() {
 }
 
 void StudioCell::ResetToNextScene() {
-  world_->Reset(
-      store::Session::ScenarioSeed(session_->manifest().seed, session_->NextDemoNumber(), false));
+  // The scene the next take will be recorded in (the paper's protocol gives two takes one
+  // configuration), not a scene of its own seed alone.
+  teach::ShowSessionDemoScene(*world_, session_->manifest().seed, session_->NextDemoNumber());
 }
 
 void StudioCell::PollGamepad(Clock::time_point now) {
@@ -234,6 +249,7 @@ void StudioCell::PollGamepad(Clock::time_point now) {
       // The teacher's hand is gone: stop the arm where it is.
       teleop_input_ = {};
       teleop_command_.velocity_m_s.setZero();
+      teleop_command_.wrist_turn_rad_s = 0;
       AddError(gamepad_.error() + "; the arm holds still");
     }
   }
@@ -246,6 +262,7 @@ void StudioCell::PollGamepad(Clock::time_point now) {
   input.screen_right = pad.screen_right;
   input.screen_up = pad.screen_up;
   input.raise = pad.raise;
+  input.turn = pad.turn;
   if (input != teleop_input_) Apply(input);
   if (pad.toggle_gripper) Apply(ui::ToggleGripper{});
   if (pad.keep) Commit();
@@ -276,12 +293,17 @@ std::string StudioCell::TeleopSource() const {
 void StudioCell::StartDemo(int number, uint64_t seed) {
   teleop_input_ = {};
   teleop_command_ = {};
+  key_ramp_.Clear();
   take_starts_ = Clock::now();
   if (teleop_mode_ != ui::TeleopMode::kScripted) {
     take_starts_ += std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(options_.countdown_s));
   }
-  recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource());
+  // A person's take ends where a person ends it: the goal holds and the gripper is clear.
+  recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource(),
+                                                    teleop_mode_ == ui::TeleopMode::kScripted
+                                                        ? teach::DemoRecorder::TakeEnd::kScripted
+                                                        : teach::DemoRecorder::TakeEnd::kPerson);
   teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
   // A simulated scene puts the arm at home itself; a real arm is where the last take left it.
   homing_take_ = teleop_mode_ != ui::TeleopMode::kScripted;
@@ -330,7 +352,12 @@ void StudioCell::StepTakeHoming(Clock::time_point now) {
 }
 
 void StudioCell::TakeEnded() {
-  if (teleop_mode_ == ui::TeleopMode::kScripted || world_->DemonstrationDone()) return Commit();
+  // A take that ran out of time with the goal holding (the toast on the plate, let go) is done,
+  // wherever the gripper stands.
+  if (teleop_mode_ == ui::TeleopMode::kScripted || world_->DemonstrationDone() ||
+      world_->TaskSucceeded()) {
+    return Commit();
+  }
   // A person ran out of time: whether an unfinished take is worth keeping is theirs to say.
   Changed();
   pending_take_ =

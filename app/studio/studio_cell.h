@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "engine/store/real_trials.h"
 #include "engine/store/session.h"
 #include "engine/teach/cartesian_teleop.h"
+#include "engine/teach/key_ramp.h"
 #include "engine/teach/play_recorder.h"
 #include "engine/teach/recorder.h"
 #include "engine/teach/stream_health.h"
@@ -80,6 +82,9 @@ class StudioCell {
   /// Opens the rollouts' replay files for the playback; a damaged one is reported, not fatal.
   void ReloadPlayback();
   double Seconds(Clock::time_point t) const;
+  /// The keyboard's command for the control period starting at `now` (KeyRamp): set just before
+  /// each tick of a keyboard take.
+  void ShapeKeyboardTeleop(Clock::time_point now);
   void ApplyFinishedJob();
   /// Resets the world to the scene of the next demonstration.
   void ResetToNextScene();
@@ -231,6 +236,8 @@ class StudioCell {
   /// Where the teacher's 3-D view looks from; the arrows move the arm as it shows it.
   worlds::OrbitCamera teacher_view_ = DefaultTeacherView();
   teach::TeleopCommand teleop_command_;
+  // The keyboard's keys as fine control: a tap moves a step, a held key speeds up.
+  teach::KeyRamp key_ramp_;
   std::unique_ptr<teach::PlayRecorder> play_;
   std::unique_ptr<RolloutPlayback> playback_;
   GamepadSource gamepad_;
@@ -256,6 +263,16 @@ class StudioCell {
   std::vector<std::string> errors_;
   std::string status_;
   std::string report_path_;
+  /// The report opener started last, reaped on a thread of its own: its exit says whether the
+  /// report was opened (xdg-open exits non-zero when it finds no browser).
+  struct Opener {
+    std::mutex mutex;
+    std::optional<int> status;  ///< waitpid's status once it exited
+    std::string program, path;
+  };
+  std::shared_ptr<Opener> opener_;
+  /// Says how the last opener ended, once it has.
+  void CheckOpener();
   std::string probe_object_;  ///< whose heat maps the probe panel shows; "": the first probed
   ui::SaliencyMode saliency_ = ui::SaliencyMode::kOff;
   /// Frame `frame` of `frames` as the policy camera saw it, with the saliency of `method`'s

@@ -26,6 +26,14 @@ void StudioCell::Apply(const ui::OpenStep& c) { current_step_ = c.step; }
 void StudioCell::Apply(const ui::AssignBeacon& c) {
   RequireIdle("assign a beacon");
   RequireTaughtHere("assign a beacon");
+  // A label that the readings would contradict is refused: a simulated beacon that cannot move
+  // would go on reporting the plate while the session said it marks the bowl.
+  if (const std::optional<std::string> fixed = source_->FixedBeaconObject();
+      fixed && *fixed != c.object) {
+    throw UserError("beacon " + c.beacon + " stays beside the " + *fixed +
+                    " in the simulated cell (the paper's placement), so it cannot mark the " +
+                    c.object + "; on a real cell a beacon marks whatever you stick it on");
+  }
   session_->AssignBeacon(c.beacon, c.object);
   status_ = "Beacon " + c.beacon + " marks the " + c.object + ".";
 }
@@ -116,6 +124,9 @@ void StudioCell::Apply(const ui::DiscardRecording&) {
   recorder_.reset();
   replace_.reset();
   pending_take_.clear();
+  // The next take starts from its own scene, the arm at home and the gripper open: what the
+  // screen shows (and the grip's readout) must not stay where the discarded take left it.
+  if (world_) ResetToNextScene();
   status_ = "Recording discarded.";
 }
 
@@ -124,6 +135,8 @@ void StudioCell::Apply(const ui::DeleteEpisode& c) {
   const store::EpisodeFlags flags = session_->Find(c.name).flags;
   last_deleted_ = Deleted{c.name, session_->DeleteEpisode(c.name), flags};
   if (episode_playback_.episode == c.name) Apply(ui::ShowEpisodeFrame{});  // nothing to show
+  // The next take's number, and so its scene, may have changed: show the one it will use.
+  ResetToNextScene();
   status_ = "Moved " + c.name + " to the session's trash (Undo brings it back).";
 }
 
@@ -133,6 +146,7 @@ void StudioCell::Apply(const ui::UndoDelete&) {
   const Deleted deleted = *last_deleted_;
   session_->RestoreEpisode(deleted.trash_path, deleted.name, deleted.flags);
   last_deleted_.reset();
+  ResetToNextScene();
   status_ = "Brought " + deleted.name + " back from the trash.";
 }
 
@@ -190,9 +204,21 @@ void StudioCell::Apply(const ui::SetTeleopMode& c) {
 
 void StudioCell::Apply(const ui::TeleopInput& c) {
   teleop_input_ = c;
+  if (teleop_mode_ == ui::TeleopMode::kKeyboard) {
+    // Keys are shaped period by period (ShapeKeyboardTeleop): a tap between two ticks still
+    // moves a step.
+    const double now = Seconds(Clock::now());
+    key_ramp_.Set(0, c.screen_right, now);
+    key_ramp_.Set(1, c.screen_up, now);
+    key_ramp_.Set(2, c.raise, now);
+    key_ramp_.Set(3, c.turn, now);
+    return;
+  }
   const ViewSize view{options_.view_width, options_.view_height};
   teleop_command_.velocity_m_s =
       source_->TeleopVelocity(*world_, c, view, teacher_view_, kTeleopSpeed_m_s);
+  teleop_command_.wrist_turn_rad_s =
+      std::clamp(static_cast<double>(c.turn), -1.0, 1.0) * teach::kWristTurnSpeed_rad_s;
 }
 
 void StudioCell::Apply(const ui::ToggleGripper&) {
@@ -281,8 +307,42 @@ void StudioCell::Apply(const ui::OpenReport&) {
     throw UserError("cannot open the report with '" + program + "' (" + std::strerror(error) +
                     "); it is at " + path);
   }
-  std::thread([pid] { waitpid(pid, nullptr, 0); }).detach();
-  status_ = "Opened " + path + " with " + program + ".";
+  auto opener = std::make_shared<Opener>();
+  opener->program = program;
+  opener->path = path;
+  opener_ = opener;
+  std::thread([pid, opener] {
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid) status = -1;
+    const std::lock_guard<std::mutex> lock(opener->mutex);
+    opener->status = status;
+  }).detach();
+  status_ = "Opening " + path + " with " + program + "...";
+}
+
+void StudioCell::CheckOpener() {
+  if (!opener_) return;
+  std::optional<int> status;
+  {
+    const std::lock_guard<std::mutex> lock(opener_->mutex);
+    status = opener_->status;
+  }
+  if (!status) return;  // still running: a browser opened by it, or the opener thinking
+  const std::string program = opener_->program, path = opener_->path;
+  opener_.reset();
+  Changed();
+  if (WIFEXITED(*status) && WEXITSTATUS(*status) == 0) {
+    status_ = "Opened " + path + " with " + program + ".";
+    return;
+  }
+  const std::string how =
+      WIFEXITED(*status)
+          ? "exit status " + std::to_string(WEXITSTATUS(*status))
+          : (WIFSIGNALED(*status) ? "killed by signal " + std::to_string(WTERMSIG(*status))
+                                  : std::string("it could not be waited for"));
+  status_ = "The report was not opened.";
+  AddError("'" + program + "' could not open the report (" + how +
+           "; no browser set up?); it is at " + path);
 }
 
 void StudioCell::Apply(const ui::DismissErrors&) { errors_.clear(); }
@@ -314,6 +374,7 @@ void StudioCell::Apply(const ui::EmergencyStop& c) {
   HoldEmergencyStop();
   teleop_input_ = {};
   teleop_command_ = {};
+  key_ramp_.Clear();
   std::string stopped;
   if (TakeWaiting()) {
     // Nothing was taught yet: there is nothing to set aside.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/cli/session_training.h"
 #include "app/studio/cell_view.h"
 #include "app/studio/session_view.h"
 #include "app/studio/studio_cell.h"
@@ -92,6 +93,15 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
                 : jobs_.RunningKind() ? std::string("the ") + JobKindName(*jobs_.RunningKind())
                                       : "";
   s.rollout_tests = options_.rollout_tests;
+  if (world_) {
+    const int steps = cli::SessionRolloutSteps(*session_, *world_, &s.rollout_limit_note);
+    s.rollout_limit_s = steps * world_->StepSeconds();
+    for (const store::EpisodeEntry& e : session_->demos()) {
+      if (e.problem.empty() && !e.flags.bad) {
+        s.longest_take_s = std::max(s.longest_take_s, e.meta.num_samples * world_->StepSeconds());
+      }
+    }
+  }
   ShowPlayback(s);
   ShowTrial(s);
   s.trial_playback = trial_playback_;

@@ -259,7 +259,7 @@ void StudioCell::TickTrial(Clock::time_point now) {
     AbortTrial(e.what());
     return;
   }
-  if (run.step >= world_->EpisodeLength()) {
+  if (run.step >= cli::SessionRolloutSteps(*session_, *world_)) {
     HoldArm();
     run.phase = ui::TrialPhase::kJudge;
     status_ = "Trial " + std::to_string(run.number) + " ran its " + std::to_string(run.step) +
@@ -325,7 +325,7 @@ void StudioCell::ShowTrial(ui::StudioSnapshot& s) const {
   }
   v.homing_progress = run.homing_progress;
   v.step = run.step;
-  v.max_steps = world_->EpisodeLength();
+  v.max_steps = cli::SessionRolloutSteps(*session_, *world_);
   v.stopped = run.stopped;
   v.message = run.message;
 }

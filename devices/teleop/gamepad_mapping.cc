@@ -39,6 +39,8 @@ GamepadTeleop MapGamepad(const StandardPad& now, const StandardPad& before) {
   t.screen_right = DeadZone(now.left_x);
   t.screen_up = -DeadZone(now.left_y);
   t.raise = -DeadZone(now.right_y);
+  // The right stick sideways turns the wrist: pushed right, clockwise seen from above.
+  t.turn = -DeadZone(now.right_x);
   t.toggle_gripper = now.a && !before.a;
   t.keep = now.start && !before.start;
   return t;

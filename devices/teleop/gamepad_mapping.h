@@ -22,6 +22,7 @@ struct GamepadTeleop {
   float screen_right = 0;       ///< left stick, x
   float screen_up = 0;          ///< left stick, y (pushed away: up)
   float raise = 0;              ///< right stick, y (pushed away: up)
+  float turn = 0;               ///< right stick, x (pushed left: the wrist counter-clockwise)
   bool toggle_gripper = false;  ///< A went down since the last state
   bool keep = false;            ///< Start went down: keep the demonstration
 };

@@ -1,6 +1,9 @@
 #include "engine/experiments/evaluation.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "engine/learn/action_ensembler.h"
@@ -24,7 +27,7 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
                                             const learn::Policy& policy,
                                             const std::vector<uint64_t>& scenario_seeds,
                                             bool keep_replay, const EvaluationHooks& hooks,
-                                            const ScenarioArrangement& arrange) {
+                                            const ScenarioArrangement& arrange, int steps) {
   const size_t n = scenario_seeds.size();
   std::vector<std::unique_ptr<worlds::World>> scenario_worlds;
   scenario_worlds.reserve(n);
@@ -35,7 +38,7 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
   }
   if (n == 0) return {};
   const bool score_actions = scenario_worlds.front()->ScoresActions();
-  const int steps = scenario_worlds.front()->EpisodeLength();
+  if (steps <= 0) steps = scenario_worlds.front()->EpisodeLength();
   std::vector<ScenarioOutcome> outcomes(n);
   // ReplayState() only reads the world, so keeping it cannot change the rollout.
   const bool replay =
@@ -118,6 +121,29 @@ std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
     }
   }
   return outcomes;
+}
+
+int RolloutSteps(const worlds::World& world, const std::vector<int64_t>& demo_samples,
+                 double factor, std::string* note) {
+  const int episode = world.EpisodeLength();
+  // Worlds whose rollouts score a fixed number of steps (the paper's 10-step 2-D tasks) or the
+  // expert's actions keep their episode: only a task that is done or not has a horizon to fit.
+  if (!world.HasSuccess() || world.ScoresActions()) return episode;
+  int64_t longest = 0;
+  for (int64_t samples : demo_samples) longest = std::max(longest, samples);
+  const double wanted = std::ceil(factor * static_cast<double>(longest));
+  const int cap = static_cast<int>(kMaxRolloutFactor * episode);
+  if (wanted > cap && note != nullptr) {
+    const double step_s = world.StepSeconds() > 0 ? world.StepSeconds() : 1.0;
+    char text[256];
+    std::snprintf(text, sizeof(text),
+                  "the longest demonstration (%.1f s) would give rollouts of %.0f s; they are "
+                  "held to %.0f s (%g times the world's %.0f s)",
+                  static_cast<double>(longest) * step_s, wanted * step_s, cap * step_s,
+                  kMaxRolloutFactor, episode * step_s);
+    *note = text;
+  }
+  return static_cast<int>(std::clamp<double>(wanted, episode, cap));
 }
 
 std::vector<ScenarioOutcome> EvaluateExpert(const WorldMaker& make_world,

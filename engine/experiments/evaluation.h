@@ -57,12 +57,24 @@ using ScenarioArrangement = std::function<void(worlds::World& world, size_t scen
 /// The worlds are made without beacons: a trained policy never reads one. `keep_replay` fills
 /// each outcome's replay; it changes nothing else. `arrange`, when given, is called on each
 /// scenario's world after its reset.
-std::vector<ScenarioOutcome> EvaluatePolicy(const WorldMaker& make_world,
-                                            const learn::Policy& policy,
-                                            const std::vector<uint64_t>& scenario_seeds,
-                                            bool keep_replay = false,
-                                            const EvaluationHooks& hooks = {},
-                                            const ScenarioArrangement& arrange = nullptr);
+/// `steps` > 0 rolls out that many steps instead of the world's EpisodeLength() (RolloutSteps).
+std::vector<ScenarioOutcome> EvaluatePolicy(
+    const WorldMaker& make_world, const learn::Policy& policy,
+    const std::vector<uint64_t>& scenario_seeds, bool keep_replay = false,
+    const EvaluationHooks& hooks = {}, const ScenarioArrangement& arrange = nullptr, int steps = 0);
+
+/// A rollout may take at most this many times the world's episode, however long the takes.
+constexpr double kMaxRolloutFactor = 4.0;
+/// Rollouts are given this many times the longest demonstration (RolloutSteps).
+constexpr double kRolloutFactor = 1.5;
+
+/// How long a policy taught by these demonstrations is given: the world's episode
+/// (EpisodeLength) or `factor` times the longest demonstration (samples), whichever is longer, a
+/// slow teacher's policy being as slow; at most kMaxRolloutFactor times the world's episode.
+/// `note`, when given, says why when the demonstrations asked for more than that (an absurd
+/// take, e.g. one left running for minutes).
+int RolloutSteps(const worlds::World& world, const std::vector<int64_t>& demo_samples,
+                 double factor = kRolloutFactor, std::string* note = nullptr);
 
 /// The expert's outcome on the same scenarios (the ceiling a figure draws as a reference; 0 for
 /// worlds that ScoresActions()).

@@ -10,10 +10,13 @@
 #include <utility>
 
 #include "engine/core/error.h"
+#include "engine/core/pauses.h"
 #include "engine/core/rng.h"
 #include "engine/core/stats.h"
 #include "engine/core/strings.h"
 #include "engine/experiments/evaluation.h"
+#include "engine/teach/person_takes.h"
+#include "engine/worlds/tabletop.h"
 #include "engine/worlds/world_factory.h"
 
 namespace recon::experiments {
@@ -25,6 +28,7 @@ constexpr uint64_t kDemoStream = 1000;
 constexpr uint64_t kTrainStream = 2000;
 constexpr uint64_t kTestStream = 3000;
 constexpr uint64_t kDemoNoiseStream = 4000;
+constexpr uint64_t kPersonStream = 5000;
 // Loss curves are averaged over windows so that a figure shows about this many points.
 constexpr int kLossCurvePoints = 120;
 
@@ -116,7 +120,35 @@ uint64_t TestScenarioSeed(uint64_t seed, int index) {
   return Rng::Derive(Rng::Derive(seed, kTestStream), index);
 }
 
+const std::vector<std::string>& ExperimentTeachers() {
+  static const std::vector<std::string> teachers = {"expert", "person"};
+  return teachers;
+}
+
 namespace {
+
+using teach::PersonTakeStats;
+
+/// A run's demonstrations by the configured teacher.
+Dataset RecordRunDemonstrations(const ExperimentConfig& config, worlds::World& world,
+                                const std::vector<uint64_t>& scenario_seeds, int play, int run,
+                                PersonTakeStats* person_stats) {
+  if (config.teacher == "expert") {
+    return worlds::RecordDemonstrations(world, scenario_seeds, play,
+                                        {config.demo_noise, DemoNoiseSeed(config.seed, run)});
+  }
+  if (config.teacher != "person") {
+    throw UserError("unknown demonstration teacher '" + config.teacher +
+                    "' (valid: " + JoinNames(ExperimentTeachers()) + ")");
+  }
+  auto* tabletop = dynamic_cast<worlds::Tabletop*>(&world);
+  if (tabletop == nullptr) {
+    throw UserError("the simulated person teaches the tabletop only, not " + world.Name());
+  }
+  return teach::RecordPersonDemonstrations(*tabletop, scenario_seeds, play,
+                                           Rng::Derive(config.seed, kPersonStream + run), {}, 5,
+                                           person_stats);
+}
 
 /// Trains and evaluates one (condition, demos, run). Thread-safe: touches only its own objects.
 RunResult RunOne(const ExperimentConfig& config, const ExperimentUnit& task,
@@ -140,8 +172,17 @@ RunResult RunOne(const ExperimentConfig& config, const ExperimentUnit& task,
   const int play_recipe =
       config.play_per_scenario >= 0 ? config.play_per_scenario : world->PlaySamplesPerScenario();
   const int play = condition.use_play ? play_recipe : 0;
-  const Dataset data = worlds::RecordDemonstrations(
-      *world, scenario_seeds, play, {config.demo_noise, DemoNoiseSeed(config.seed, task.run)});
+  teach::PersonTakeStats person_stats;
+  Dataset data =
+      RecordRunDemonstrations(config, *world, scenario_seeds, play, task.run, &person_stats);
+  // The horizon follows the takes as the teacher gave them, pauses and all.
+  std::vector<int64_t> demo_lengths;
+  for (const Episode& e : data.demos)
+    demo_lengths.push_back(static_cast<int64_t>(e.samples.size()));
+  // A person's pauses go; the scripted teacher's commands that move nothing are its waits.
+  if (config.teacher == "person" && !config.pause_motion.empty()) {
+    data = WithoutPauses(data, config.pause_motion);
+  }
   result.demo_samples = data.NumDemoSamples();
 
   learn::TrainConfig train = config.train;
@@ -204,10 +245,25 @@ RunResult RunOne(const ExperimentConfig& config, const ExperimentUnit& task,
   const WorldMaker make_test_world = [&] {
     return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
   };
-  const std::vector<ScenarioOutcome> outcomes = EvaluatePolicy(make_test_world, policy, test_seeds);
+  const int rollout_steps = RolloutSteps(*world, demo_lengths, config.rollout_factor);
+  const std::vector<ScenarioOutcome> outcomes =
+      EvaluatePolicy(make_test_world, policy, test_seeds, false, {}, nullptr, rollout_steps);
   result.metric = Mean(Metrics(outcomes));
   result.success_rate = SuccessRate(outcomes);
   result.details = MeanDetails(outcomes);
+  if (config.teacher == "person") {
+    // What the person's takes cost and looked like: the teacher's side of the ledger.
+    const PersonTakeStats& p = person_stats;
+    result.details["teacher_tries_per_demo"] =
+        static_cast<double>(p.tries) / std::max(1, p.demonstrations);
+    result.details["teacher_seconds_per_demo"] = p.kept_seconds / std::max(1, p.demonstrations);
+    result.details["teacher_total_seconds"] = p.total_seconds;
+    result.details["teacher_demos_done"] =
+        static_cast<double>(p.kept_done) / std::max(1, p.demonstrations);
+    result.details["teacher_still_share"] =
+        static_cast<double>(p.still_samples) / std::max(1, p.kept_samples);
+    result.details["rollout_steps"] = rollout_steps;
+  }
   return result;
 }
 

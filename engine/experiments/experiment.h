@@ -40,7 +40,21 @@ struct ExperimentConfig {
   /// Ensemble): model 0 from the run's training seed, model m from Rng::Derive(it, m). 1 = one
   /// model (the paper's); at most kMaxPolicyEnsemble.
   int policy_ensemble = 1;
+  /// Who gives the demonstrations: "expert" (the world's scripted teacher) or "person" (the
+  /// tabletop's simulated person at the keyboard, teach::SimulatedPerson: human-paced takes
+  /// with pauses, overshoot and missed grasps, a failed take recorded again).
+  std::string teacher = "expert";
+  /// Rollouts run max(the world's episode, rollout_factor x the longest demonstration) steps,
+  /// at most kMaxRolloutFactor x the world's episode (RolloutSteps).
+  double rollout_factor = 1.5;  // experiments::kRolloutFactor (evaluation.h)
+  /// When not empty, the demonstrations' pauses are left out of training, both methods alike
+  /// (WithoutPauses, engine/core/pauses.h), with these action entries as motion
+  /// (WorldRecipe::pause_motion); empty: every sample is trained on.
+  std::vector<float> pause_motion;
 };
+
+/// Demonstration teachers an experiment accepts.
+const std::vector<std::string>& ExperimentTeachers();
 
 /// The largest ExperimentConfig::policy_ensemble accepted.
 constexpr int kMaxPolicyEnsemble = 16;

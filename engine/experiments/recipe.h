@@ -27,6 +27,10 @@ inline const std::vector<int> kFeatureGateHidden = {32};
 struct WorldRecipe {
   learn::NetworkConfig network;
   learn::TrainConfig train;
+  /// The action's motion entries (World::ActionNoiseScale's shape: non-zero = motion) when the
+  /// recipe leaves a person's pauses out of training (WithoutPauses, engine/core/pauses.h);
+  /// empty: every sample is trained on.
+  std::vector<float> pause_motion;
 };
 WorldRecipe RecipeForWorld(const std::string& world, bool images_are_bytes);
 

@@ -16,13 +16,32 @@ TeleopArm TeleopArmOf(const safety::SafetyLimits& limits) {
   return arm;
 }
 
+double WristTurn(const std::array<double, 6>& q_rad, const TeleopArm& arm) {
+  // The flange's x axis on the table, now and at home: the tool points down in both, so the
+  // angle between them is the turn about the vertical.
+  const auto heading = [&](const std::array<double, 6>& q) {
+    const Eigen::Vector3d x = arm.base_in_table.linear() * safety::Ur5FlangePose(q).linear().col(0);
+    return std::atan2(x.y(), x.x());
+  };
+  std::array<double, 6> home;
+  for (int i = 0; i < 6; ++i) home[i] = worlds::Ur5Arm::kHome[i];
+  return std::remainder(heading(q_rad) - heading(home), 2 * M_PI);
+}
+
 std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
                                          const TeleopCommand& command, const TeleopArm& arm,
                                          double period_s, const CartesianTeleopLimits& limits) {
   std::vector<float> u(7, 0.0f);
   u[6] = command.close_gripper ? 1.0f : 0.0f;
   Eigen::Vector3d velocity = command.velocity_m_s;
-  if (!velocity.allFinite() || velocity.isZero(0.0)) return u;
+  double turn = std::isfinite(command.wrist_turn_rad_s) ? command.wrist_turn_rad_s : 0.0;
+  if (turn != 0.0) {
+    // No further than a period takes the wrist to its limit.
+    const double now = WristTurn(q_rad, arm);
+    turn = std::clamp(turn, std::min(0.0, (-kMaxWristTurn_rad - now) / period_s),
+                      std::max(0.0, (kMaxWristTurn_rad - now) / period_s));
+  }
+  if (!velocity.allFinite() || (velocity.isZero(0.0) && turn == 0.0)) return u;
   // The height limits: no further than a period takes the tool point to them.
   const double z = (arm.base_in_table * safety::Ur5ToolPoint(q_rad, arm.tool_offset_m)).z();
   velocity.z() = std::clamp(velocity.z(), std::min(0.0, (limits.min_grip_height_m - z) / period_s),
@@ -30,8 +49,8 @@ std::vector<float> CartesianTeleopAction(const std::array<double, 6>& q_rad,
   CartesianVelocityOptions options;
   options.tool_offset_m = arm.tool_offset_m;
   options.max_joint_speed_rad_s = limits.max_joint_speed_rad_s;
-  const std::array<double, 6> qd =
-      CartesianJointVelocities(q_rad, velocity, arm.base_in_table, options);
+  const std::array<double, 6> qd = CartesianJointVelocities(
+      q_rad, velocity, Eigen::Vector3d(0, 0, turn), arm.base_in_table, options);
   for (int i = 0; i < 6; ++i) u[i] = static_cast<float>(qd[i]);
   return u;
 }

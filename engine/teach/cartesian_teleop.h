@@ -16,13 +16,23 @@ namespace recon::teach {
 /// the grip point in the table frame, the gripper, and whether the demonstration is over.
 struct TeleopCommand {
   Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
+  /// Turning the wrist about the vertical (rad/s, counter-clockwise seen from above): lines the
+  /// fingers' closing axis up with what they are to grasp.
+  double wrist_turn_rad_s = 0.0;
   bool close_gripper = false;
   bool finish = false;
 
   bool operator==(const TeleopCommand& o) const {
-    return velocity_m_s == o.velocity_m_s && close_gripper == o.close_gripper && finish == o.finish;
+    return velocity_m_s == o.velocity_m_s && wrist_turn_rad_s == o.wrist_turn_rad_s &&
+           close_gripper == o.close_gripper && finish == o.finish;
   }
 };
+
+/// How far a teacher may turn the wrist either way from the home pose's orientation: a parallel
+/// gripper is the same turned by half a turn, so a quarter turn each way reaches every grasp.
+constexpr double kMaxWristTurn_rad = 1.5707963267948966;
+/// The wrist turn's speed under a held key (rad/s): a quarter turn in about 2.6 s.
+constexpr double kWristTurnSpeed_rad_s = 0.6;
 
 /// Limits of the Cartesian mapping.
 struct CartesianTeleopLimits {
@@ -46,9 +56,14 @@ struct TeleopArm {
 /// envelope's tool point (the simulated cell's base is the table frame's origin).
 TeleopArm TeleopArmOf(const safety::SafetyLimits& limits);
 
+/// How far the tool is turned about the vertical from the home pose's orientation (radians,
+/// counter-clockwise seen from above, in (-pi, pi]), for an arm at `q_rad` standing as `arm`.
+double WristTurn(const std::array<double, 6>& q_rad, const TeleopArm& arm);
+
 /// The one Cartesian teleop of both cells, simulated and real: the action (6 joint velocities,
 /// then the gripper, closed above 0.5) that moves the arm's tool point at the commanded table
-/// velocity from joints `q_rad`, holding the tool's orientation (resolved rate over the UR5's DH
+/// velocity from joints `q_rad`, holding the tool's orientation but for the commanded wrist turn,
+/// which stops at kMaxWristTurn_rad either way (resolved rate over the UR5's DH
 /// model, damped near singularities, every joint within max_joint_speed_rad_s with the
 /// direction kept: resolved_rate.h). The vertical velocity is cut so that one control period
 /// (`period_s`) never takes the tool point outside the height limits. Holding still (a zero

@@ -42,6 +42,16 @@ void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64
   }
 }
 
+void ShowSessionDemoScene(worlds::World& world, uint64_t session_seed, int number) {
+  const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, false);
+  const SessionScene scene = SessionSceneOf(world, session_seed, number);
+  if (scene.configuration < 0) {
+    world.Reset(seed);
+  } else {
+    world.ResetTake(seed, scene.configuration_seed, scene.configuration);
+  }
+}
+
 void StartSessionPlay(PlayRecorder& recorder, const worlds::World& world, uint64_t session_seed,
                       int number, int count) {
   const uint64_t seed = store::Session::ScenarioSeed(session_seed, number, true);
@@ -74,8 +84,8 @@ void StartSessionTake(DemoRecorder& recorder, const worlds::World& world,
 
 TeacherAction ScriptedTeacher(const worlds::World& world) { return {world.ExpertAction(), false}; }
 
-DemoRecorder::DemoRecorder(worlds::World& world, Teacher teacher, std::string source)
-    : world_(world), teacher_(std::move(teacher)), source_(std::move(source)) {}
+DemoRecorder::DemoRecorder(worlds::World& world, Teacher teacher, std::string source, TakeEnd end)
+    : world_(world), teacher_(std::move(teacher)), source_(std::move(source)), end_(end) {}
 
 void DemoRecorder::Start(uint64_t seed) { StartTake(seed, seed, -1); }
 
@@ -116,8 +126,10 @@ bool DemoRecorder::Tick() {
   record_.episode.samples.push_back(std::move(sample));
   // robomimic's sparse reward: 1 once the task is done.
   record_.rewards.push_back(world_.TaskSucceeded() ? 1.0 : 0.0);
-  // A teacher stops recording once the task is done (World::DemonstrationDone), or says so.
-  if (action.finished || world_.DemonstrationDone() || samples() >= world_.EpisodeLength()) {
+  // A teacher stops recording once the task is done, or says so.
+  const bool done =
+      end_ == TakeEnd::kPerson ? world_.GoalHoldsAndClear() : world_.DemonstrationDone();
+  if (action.finished || done || samples() >= world_.EpisodeLength()) {
     recording_ = false;
   }
   return recording_;

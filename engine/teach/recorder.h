@@ -31,8 +31,13 @@ TeacherAction ScriptedTeacher(const worlds::World& world);
 /// the teacher saw (x, y, beacon reading b) with the action they took, then steps the world.
 class DemoRecorder {
  public:
+  /// Where a take ends by itself: at the scripted teacher's end (World::DemonstrationDone) or
+  /// where a person ends it (World::GoalHoldsAndClear: the goal holds, the gripper clear).
+  enum class TakeEnd { kScripted, kPerson };
+
   /// `source` names the teacher in the episode's metadata, e.g. "scripted-teleop".
-  DemoRecorder(worlds::World& world, Teacher teacher, std::string source);
+  DemoRecorder(worlds::World& world, Teacher teacher, std::string source,
+               TakeEnd end = TakeEnd::kScripted);
 
   /// Resets the world to scenario `seed` and starts a new recording.
   void Start(uint64_t seed);
@@ -62,6 +67,7 @@ class DemoRecorder {
   worlds::World& world_;
   Teacher teacher_;
   std::string source_;
+  TakeEnd end_;
   store::DemoRecord record_;
   bool recording_ = false;
   double noise_sigma_ = 0.0;
@@ -74,6 +80,10 @@ class DemoRecorder {
 /// number / n, whose scene is that of the configuration's first demonstration.
 void StartSessionDemo(DemoRecorder& recorder, const worlds::World& world, uint64_t session_seed,
                       int number);
+
+/// Puts `world` in the scene demonstration `number` of the session will be recorded in
+/// (StartSessionDemo's), without recording: what a teacher sees before pressing Start.
+void ShowSessionDemoScene(worlds::World& world, uint64_t session_seed, int number);
 
 /// Starts demo_<number> of the session `manifest` describes, a new take or one recorded again,
 /// with the session's injected noise: in its configuration's scene (StartSessionDemo) when

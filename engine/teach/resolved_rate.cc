@@ -47,6 +47,14 @@ Eigen::Matrix<double, 6, 6> Ur5ToolJacobian(const Joints& q_rad, double tool_off
 Joints CartesianJointVelocities(const Joints& q_rad, const Eigen::Vector3d& tool_velocity_table_m_s,
                                 const Eigen::Isometry3d& base_in_table,
                                 const CartesianVelocityOptions& options) {
+  return CartesianJointVelocities(q_rad, tool_velocity_table_m_s, Eigen::Vector3d::Zero(),
+                                  base_in_table, options);
+}
+
+Joints CartesianJointVelocities(const Joints& q_rad, const Eigen::Vector3d& tool_velocity_table_m_s,
+                                const Eigen::Vector3d& tool_angular_velocity_table_rad_s,
+                                const Eigen::Isometry3d& base_in_table,
+                                const CartesianVelocityOptions& options) {
   if (!(options.damping >= 0) || !(options.singular_region > 0) ||
       !(options.max_joint_speed_rad_s > 0) || !std::isfinite(options.tool_offset_m)) {
     throw std::invalid_argument(
@@ -54,12 +62,14 @@ Joints CartesianJointVelocities(const Joints& q_rad, const Eigen::Vector3d& tool
         "max_joint_speed_rad_s > 0, tool_offset_m finite");
   }
   Joints qd{};
-  if (!tool_velocity_table_m_s.allFinite() || !AllFinite(q_rad) ||
-      tool_velocity_table_m_s.isZero(0.0)) {
+  if (!tool_velocity_table_m_s.allFinite() || !tool_angular_velocity_table_rad_s.allFinite() ||
+      !AllFinite(q_rad) ||
+      (tool_velocity_table_m_s.isZero(0.0) && tool_angular_velocity_table_rad_s.isZero(0.0))) {
     return qd;
   }
   Eigen::Matrix<double, 6, 1> twist;
-  twist << base_in_table.linear().transpose() * tool_velocity_table_m_s, Eigen::Vector3d::Zero();
+  twist << base_in_table.linear().transpose() * tool_velocity_table_m_s,
+      base_in_table.linear().transpose() * tool_angular_velocity_table_rad_s;
 
   const Eigen::JacobiSVD<Eigen::Matrix<double, 6, 6>> svd(
       Ur5ToolJacobian(q_rad, options.tool_offset_m), Eigen::ComputeFullU | Eigen::ComputeFullV);

@@ -36,5 +36,11 @@ std::array<double, 6> CartesianJointVelocities(const std::array<double, 6>& q_ra
                                                const Eigen::Vector3d& tool_velocity_table_m_s,
                                                const Eigen::Isometry3d& base_in_table,
                                                const CartesianVelocityOptions& options = {});
+/// The same, turning the tool at `tool_angular_velocity_table_rad_s` (table frame) meanwhile:
+/// a teacher turning the wrist about the vertical to line the fingers up with an object.
+std::array<double, 6> CartesianJointVelocities(
+    const std::array<double, 6>& q_rad, const Eigen::Vector3d& tool_velocity_table_m_s,
+    const Eigen::Vector3d& tool_angular_velocity_table_rad_s,
+    const Eigen::Isometry3d& base_in_table, const CartesianVelocityOptions& options = {});
 
 }  // namespace recon::teach

@@ -332,6 +332,14 @@ bool Tabletop::DemonstrationDone() const {
   return TaskSucceeded() && (arm_->GripPosition() - retreat).norm() < kRetreatTolerance_m;
 }
 
+bool Tabletop::GoalHoldsAndClear() const {
+  if (!TaskSucceeded() || arm_->GripperClosed()) return false;
+  const Eigen::Vector3d grip = arm_->GripPosition(), toast = ToastPosition();
+  const double toast_top = toast.z() + kToastRestZ;
+  return grip.z() - toast_top >= kClearOfToast_m ||
+         PlanarDistance(grip, toast) >= kToastRadius_m + kClearOfToast_m;
+}
+
 std::map<std::string, double> Tabletop::OutcomeDetails() const {
   const Eigen::Vector3d start(kToastX, 0.0, kToastRestZ);
   const Eigen::Vector3d grip = arm_->GripPosition();

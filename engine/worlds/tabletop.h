@@ -99,6 +99,11 @@ class Tabletop : public World {
   double EpisodeMetric() const override;
   /// The toast is on the plate and the arm has risen back above it: a teacher stops there.
   bool DemonstrationDone() const override;
+  /// The toast lies on the plate, released, the gripper is open and its finger tips are
+  /// kClearOfToast_m above the toast's top or beside it: a person's take ends here.
+  bool GoalHoldsAndClear() const override;
+  /// How far the open gripper must be from a delivered toast for a person's take to end.
+  static constexpr double kClearOfToast_m = 0.03;
   /// The toast's final distance to the plate, lower is better; success; 10 Hz.
   WorldTraits Traits() const override;
   /// The toast lies on the plate, released.

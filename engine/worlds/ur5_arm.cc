@@ -222,6 +222,25 @@ std::optional<double> Ur5Arm::GraspOffset(int object) const {
   return offset.norm();
 }
 
+std::optional<Ur5Arm::GraspAlignment> Ur5Arm::AlignmentWith(const std::string& object) const {
+  const int body = mj_name2id(scene_->model(), mjOBJ_BODY, object.c_str());
+  if (body < 0) return std::nullopt;
+  const mjData* d = scene_->data();
+  const mjtNum* rg = d->site_xmat + 9 * grip_site_;
+  const Eigen::Vector3d closing(rg[0], rg[3], rg[6]), faces(rg[1], rg[4], rg[7]);
+  const mjtNum* p = d->xpos + 3 * body;
+  const Eigen::Vector3d offset = Eigen::Vector3d(p[0], p[1], p[2]) - GripPosition();
+  GraspAlignment a;
+  a.closing_axis = closing;
+  a.along_closing_m = closing.dot(offset);
+  a.along_faces_m = faces.dot(offset);
+  // The same window as GraspOffset's.
+  a.closing_window_m =
+      std::max(0.0, kFingerInnerHalfOpening_m - HalfExtent(*scene_, body, closing));
+  a.faces_window_m = std::max(0.0, HalfExtent(*scene_, body, faces) - kFingerHalfWidth_m);
+  return a;
+}
+
 std::optional<double> Ur5Arm::HighestGraspHeight(const std::string& object) const {
   const int body = mj_name2id(scene_->model(), mjOBJ_BODY, object.c_str());
   if (body < 0) return std::nullopt;

@@ -63,6 +63,18 @@ class Ur5Arm {
   /// Nullopt for a body the scene does not have. What a teacher's height readout marks.
   std::optional<double> HighestGraspHeight(const std::string& object) const;
 
+  /// Where an object lies relative to the open fingers: what decides whether closing holds it.
+  struct GraspAlignment {
+    Eigen::Vector3d closing_axis;  ///< the fingers' closing direction, world frame (unit)
+    double along_closing_m = 0;    ///< the object's centre off the grip point along it
+    double along_faces_m = 0;      ///< ... and along the finger faces
+    /// How far each may be for a close to hold the object (GraspOffset's window).
+    double closing_window_m = 0, faces_window_m = 0;
+  };
+  /// Nullopt for a body the scene does not have. For a teacher's readout ("the toast is 2 cm
+  /// off the jaw's axis") and the jaw's axis drawn in the teacher's view.
+  std::optional<GraspAlignment> AlignmentWith(const std::string& object) const;
+
   /// Sets the joint velocity command (rad/s); each entry is clamped to kMaxJointSpeed_rad_s.
   /// Non-finite entries are treated as 0 (a safety stop, not an exception, inside a rollout).
   void CommandJointVelocities(const Ur5Joints& qd);

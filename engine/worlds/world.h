@@ -117,6 +117,11 @@ class World {
   /// EpisodeLength() (a teacher stops the recording once the task is done, rather than recording
   /// the arm standing still). Rollouts always run EpisodeLength() steps. Default: never.
   virtual bool DemonstrationDone() const { return false; }
+  /// A person's take is over: the task's goal holds and the arm has let go of what it moved and
+  /// is clear of it, wherever the arm is (a person does not aim for the scripted teacher's end
+  /// point). The studio ends keyboard and gamepad takes here, and counts a take that ran out of
+  /// time with the goal holding (TaskSucceeded) as done. Default: DemonstrationDone().
+  virtual bool GoalHoldsAndClear() const { return DemonstrationDone(); }
   /// Whether the task is done in the current state (false when !HasSuccess()).
   virtual bool TaskSucceeded() const { return false; }
   /// Named facts about the end state that explain an outcome, each a number averaged over test

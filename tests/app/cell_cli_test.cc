@@ -257,6 +257,32 @@ TEST(CellCliTest, ImageAugmentationOfVectorObservationsIsRefused) {
   }
 }
 
+// Who demonstrates: the scripted teacher or the simulated person; anything else, or the person
+// on the true-positions diagnostic, is refused by name before anything is written.
+TEST(CellCliTest, AnUnknownTeacherIsRefusedListingTheValidOnes) {
+  const fs::path out = FreshDir("teacher");
+  CommandResult r = RunRecon(
+      "experiment tabletop --runs 1 --tests 1 --teacher robot --plan-only "
+      "--out " +
+      (out / "a").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--teacher must be one of expert, person; got 'robot'"));
+  EXPECT_FALSE(fs::exists(out / "a"));
+  r = RunRecon(
+      "experiment tabletop --runs 1 --tests 1 --teacher person --observation state "
+      "--plan-only --out " +
+      (out / "b").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--teacher person"));
+  EXPECT_FALSE(fs::exists(out / "b"));
+  r = RunRecon(
+      "experiment tabletop --runs 1 --tests 1 --teacher person --keep-pauses "
+      "--plan-only --out " +
+      (out / "c").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "c" / "plan.json"));
+}
+
 TEST(CellCliTest, TabletopImageSizeOutOfRangeIsRejected) {
   const CommandResult r = RunRecon("experiment tabletop --image-size 8");
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -1,7 +1,10 @@
 // `recon eval` on a simulated arm session keeps a replay of every rollout beside its JSON, so
 // the studio can play the Baseline and RECON back side by side, frame by frame.
 
+#include <algorithm>
+
 #include "engine/store/rollout_replay.h"
+#include "engine/store/session.h"
 #include "tests/app/session_cli_fixture.h"
 
 namespace {
@@ -22,6 +25,15 @@ TEST_F(SessionCliTest, TabletopEvalWritesAReplayOfEveryRollout) {
   r = RunRecon("eval --session " + session.string() + " --tests " + std::to_string(kTests));
   ASSERT_EQ(r.exit_code, 0) << r.output;
 
+  // A rollout runs the task's 20 s or 1.5 times the longest demonstration, whichever is longer.
+  size_t longest = 0;
+  {
+    const recon::store::Session opened =
+        recon::store::Session::Open(session.string(), recon::store::Session::Access::kReadOnly);
+    for (const auto& e : opened.demos()) longest = std::max<size_t>(longest, e.meta.num_samples);
+  }
+  ASSERT_GT(longest, 0u);
+  const size_t steps = std::max<size_t>(kTabletopEpisodeLength, (3 * longest + 1) / 2);
   for (const std::string method : {"baseline", "recon"}) {
     SCOPED_TRACE(method);
     const json rollout = ReadJson(session / "rollouts" / (method + ".json"));
@@ -37,7 +49,7 @@ TEST_F(SessionCliTest, TabletopEvalWritesAReplayOfEveryRollout) {
     for (size_t i = 0; i < replay.scenarios.size(); ++i) {
       SCOPED_TRACE("scenario " + std::to_string(i));
       const recon::store::ScenarioReplay& scenario = replay.scenarios[i];
-      EXPECT_EQ(scenario.states.size(), static_cast<size_t>(kTabletopEpisodeLength) + 1);
+      EXPECT_EQ(scenario.states.size(), steps + 1);
       // The replay is of the very rollouts the JSON scores.
       const json& scored = rollout["per_scenario"][i];
       EXPECT_EQ(scenario.seed, scored["seed"].get<uint64_t>());

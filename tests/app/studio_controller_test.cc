@@ -30,6 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 class StudioControllerTest : public ::testing::Test {
  protected:
@@ -139,6 +140,111 @@ TEST_F(StudioControllerTest, TheKeyboardDrivesTheArmAsTheTeachersViewShowsIt) {
   const store::Session opened = store::Session::Open(session, store::Session::Access::kReadOnly);
   ASSERT_EQ(opened.demos().size(), 1u);
   EXPECT_EQ(opened.demos()[0].meta.source, "keyboard-teleop");
+}
+
+// Fine control: a key tapped and let go at once moves one small step, even when both happen
+// between two control periods; Home/End turn the wrist, and the readout follows the turn.
+TEST_F(StudioControllerTest, ATapMovesAStepAndTheWristTurns) {
+  StudioController controller(Options());
+  controller.Push(ui::OpenStep{teach::Step::kRecord});
+  controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+  controller.Push(ui::StartRecording{});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) {
+    return now.recording && now.countdown_s <= 0 && now.recording_samples > 2;
+  });
+  const float start_z = s.grip_m[2];
+  ui::TeleopInput lower;
+  lower.raise = -1;
+  controller.Push(lower);
+  controller.Push(ui::TeleopInput{});
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.grip_m[2] < start_z - 0.002f; }, 10);
+  // Let the servo settle, then measure the step.
+  const int after = s.recording_samples + 5;
+  s = WaitFor(
+      controller, [&](const auto& now) { return now.recording_samples >= after; }, 10);
+  const float step_m = start_z - s.grip_m[2];
+  EXPECT_GT(step_m, 0.003f);
+  EXPECT_LT(step_m, 0.008f) << "a tap is a small step, not a centimetre or two";
+
+  EXPECT_NEAR(s.grip.wrist_turn_deg, 0.0f, 1.0f);
+  const std::array<float, 4> jaw_before = s.teacher_view.jaw_pixels;
+  ui::TeleopInput turn;
+  turn.turn = 1;
+  controller.Push(turn);
+  s = WaitFor(
+      controller, [](const auto& now) { return now.grip.wrist_turn_deg > 30; }, 20);
+  controller.Push(ui::TeleopInput{});
+  EXPECT_GT(s.grip.wrist_turn_deg, 30.0f);
+  EXPECT_EQ(s.grip.wrist_limit_deg, 90.0f);
+  s = WaitFor(controller,
+              [&](const auto& now) { return now.teacher_view.jaw_pixels != jaw_before; });
+  EXPECT_NE(s.teacher_view.jaw_pixels, jaw_before) << "the jaw's axis turns in the 3-D view";
+  controller.Push(ui::DiscardRecording{});
+}
+
+// What the screen shows before Start is the scene the take is recorded in (the paper's protocol
+// gives two takes one configuration), also after a take is discarded or an episode deleted; and
+// a discarded take leaves the arm at home with the gripper open, not closed on nothing.
+TEST_F(StudioControllerTest, TheSceneBeforeStartIsTheTakesScene) {
+  StudioController controller(Options());
+  controller.Push(ui::OpenStep{teach::Step::kBeacons});  // where the camera view is drawn
+  const auto plate = [](const ui::StudioSnapshot& s) {
+    for (const ui::ObjectView& o : s.objects) {
+      if (o.name == "plate") return std::array<float, 2>{o.pixel_x, o.pixel_y};
+    }
+    return std::array<float, 2>{-1, -1};
+  };
+  const auto bowl = [](const ui::StudioSnapshot& s) {
+    for (const ui::ObjectView& o : s.objects) {
+      if (o.name == "bowl") return std::array<float, 2>{o.pixel_x, o.pixel_y};
+    }
+    return std::array<float, 2>{-1, -1};
+  };
+  controller.Push(ui::StartRecording{});  // demo_0, scripted
+  WaitFor(controller, [](const auto& now) { return !now.recording && !now.episodes.empty(); });
+  for (int round = 0; round < 2; ++round) {
+    // Before Start: the scene of demo_1, the second take of configuration 0.
+    ui::StudioSnapshot before = WaitFor(controller, [&](const auto& now) {
+      return !now.objects.empty() && now.episodes.size() == 1;
+    });
+    controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+    controller.Push(ui::StartRecording{});
+    ui::StudioSnapshot during = WaitFor(controller, [](const auto& now) {
+      return now.recording && now.countdown_s <= 0 && now.recording_samples > 0;
+    });
+    EXPECT_NEAR(plate(during)[0], plate(before)[0], 1.0f) << "round " << round;
+    EXPECT_NEAR(plate(during)[1], plate(before)[1], 1.0f) << "round " << round;
+    EXPECT_NEAR(bowl(during)[0], bowl(before)[0], 1.0f) << "round " << round;
+    EXPECT_NEAR(bowl(during)[1], bowl(before)[1], 1.0f) << "round " << round;
+    ui::TeleopInput lower;
+    lower.raise = -1;
+    controller.Push(lower);
+    controller.Push(ui::ToggleGripper{});
+    WaitFor(controller, [](const auto& now) { return now.gripper_closed; });
+    controller.Push(ui::TeleopInput{});
+    controller.Push(ui::DiscardRecording{});
+    ui::StudioSnapshot after = WaitFor(controller, [](const auto& now) { return !now.recording; });
+    after = WaitFor(controller, [](const auto& now) { return !now.gripper_closed; });
+    EXPECT_EQ(after.grip.state, ui::GripState::kOpen) << "round " << round;
+    controller.Push(ui::SetTeleopMode{ui::TeleopMode::kScripted});
+  }
+}
+
+// The simulated cell's beacon stands beside the plate: marking another object with it is
+// refused by name (a real cell accepts any object: the beacon reports where it is stuck).
+TEST_F(StudioControllerTest, TheSimulatedBeaconCannotMarkAnotherObject) {
+  StudioController controller(Options());
+  controller.Push(ui::AssignBeacon{"plate", "bowl"});
+  ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+  EXPECT_THAT(s.errors[0], HasSubstr("cannot mark the bowl"));
+  EXPECT_EQ(s.session_dir.empty(), false);
+  controller.Push(ui::DismissErrors{});
+  controller.Push(ui::AssignBeacon{"plate", "plate"});
+  s = WaitFor(controller, [](const auto& now) {
+    return now.status.find("marks the plate") != std::string::npos;
+  });
+  EXPECT_TRUE(s.errors.empty());
 }
 
 // Demonstrations from two teleops are flagged (a policy learns best from one teacher's style),
@@ -384,7 +490,26 @@ TEST_F(StudioControllerTest, TheReportOpensWithTheDesktopsOpener) {
     std::ifstream in(opened);
     const std::string given((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     EXPECT_EQ(given, (dir_ / "session" / "report" / "report.html").string());
+    s = WaitFor(controller,
+                [](const auto& now) { return now.status.find("Opened") != std::string::npos; });
+    EXPECT_TRUE(s.errors.empty());
   }  // the session is free for the next studio
+
+  {
+    // An opener that starts and then fails (xdg-open exits 3 when it finds no browser) is an
+    // error naming its exit, not "Opened".
+    const fs::path failing = dir_ / "failing.sh";
+    std::ofstream(failing) << "#!/bin/sh\nexit 3\n";
+    fs::permissions(failing, fs::perms::owner_all);
+    StudioOptions fails = Options();
+    fails.open_command = failing.string();
+    StudioController controller(fails);
+    controller.Push(ui::OpenReport{});
+    ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) { return !now.errors.empty(); });
+    EXPECT_THAT(s.errors[0], HasSubstr("could not open the report (exit status 3"));
+    EXPECT_THAT(s.errors[0], HasSubstr("report.html"));
+    EXPECT_THAT(s.status, Not(HasSubstr("Opened")));
+  }
 
   StudioOptions missing = Options();
   missing.open_command = (dir_ / "no-such-opener").string();

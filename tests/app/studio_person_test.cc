@@ -80,5 +80,52 @@ click [ ] Keyboard##teleop)",
   fs::remove_all(dir);
 }
 
+// The realistic person (reaction times, pauses, a misjudged depth: ui::PersonPace::Realistic)
+// teaches the paper's protocol through the same screens, as a newcomer does: takes in which the
+// task is done, a take that ended undone discarded and given again. It gets there,
+// slower than the ideal person, and the takes end where a person ends them (the toast on the
+// plate, the gripper clear) without pressing Enter. Prints the tries and the teacher's time.
+TEST(StudioPersonTest, ARealisticPersonGetsATakeDoneThroughTheScreens) {
+  const fs::path dir = fs::temp_directory_path() / ("recon-realistic-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  constexpr uint64_t kSeed = 3;
+  // One take done: a whole session of such takes is what scripts/person-sessions measures.
+  constexpr int kDemonstrations = 1;
+  constexpr int kMaxTries = 12;
+  std::printf("realistic person, seed %llu, paper layout, session seed 1\n",
+              static_cast<unsigned long long>(kSeed));
+  StudioOptions options;
+  options.session_dir = (dir / "session").string();
+  options.recent_sessions_file = (dir / "config" / "recent.json").string();
+  options.countdown_s = 1;
+  options.real_time = false;
+  HeadlessStudio studio(options);
+  ui::UiDriver& driver = studio.driver();
+  driver.RunScript(R"(wait 3
+click Beacons##step
+click object:plate
+wait-idle 60
+click Calibrate##step
+click Collect points and fit
+wait-idle 300
+click Record##step
+click [ ] Keyboard##teleop)",
+                   "setup");
+  const ui::UiDriver::PersonTakesResult r = driver.PersonTakes(kDemonstrations, kSeed, kMaxTries);
+  std::printf("%d demonstrations in %d tries, %d grasp attempts; %.1f s kept, %.1f s recorded\n",
+              r.kept, r.tries, r.grasp_attempts, r.kept_seconds, r.total_seconds);
+  const ui::StudioSnapshot s = studio.controller().Snapshot();
+  ASSERT_EQ(s.episodes.size(), static_cast<size_t>(kDemonstrations));
+  for (const ui::EpisodeView& e : s.episodes) {
+    EXPECT_TRUE(e.succeeded) << e.name;
+    // Ended by the goal with the gripper clear, at the latest at the take's limit.
+    EXPECT_LE(e.samples, s.recording_max_samples) << e.name;
+  }
+  EXPECT_GE(r.tries, kDemonstrations);
+  EXPECT_GE(r.grasp_attempts, kDemonstrations) << "every kept take closed the gripper";
+  EXPECT_GE(r.total_seconds, r.kept_seconds);
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace recon::studio

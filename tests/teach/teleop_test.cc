@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "devices/render/mujoco_renderer.h"
@@ -222,6 +223,58 @@ TEST(StreamHealth, CountsMissingUpdatesAndMeasuresTheSpread) {
   EXPECT_EQ(silent.dropout_fraction, 1.0);
   EXPECT_NEAR(silent.seconds_since_last, 4.0, 1e-9);
   EXPECT_THROW(StreamHealth(0.0), UserError);
+}
+
+}  // namespace
+}  // namespace recon::teach
+
+namespace recon::teach {
+namespace {
+
+// The wrist turns about the vertical where the grip point stays, and stops at its limit; the
+// jaw's closing axis turns with it, which is what lets a person line the fingers up.
+TEST(CartesianTeleop, TurnsTheWristInPlaceUpToItsLimit) {
+  auto world = MakeTabletop();
+  world->Reset(5);
+  const TeleopArm arm = TeleopArmOf(world->safety_limits());
+  const Eigen::Vector3d start = world->arm().GripPosition();
+  const Eigen::Vector3d axis_before = world->arm().AlignmentWith("toast")->closing_axis;
+  EXPECT_NEAR(WristTurn(world->arm().JointPositions(), arm), 0.0, 1e-3);
+  TeleopCommand command;
+  command.wrist_turn_rad_s = kWristTurnSpeed_rad_s;
+  for (int i = 0; i < 10; ++i) world->Step(CartesianTeleopAction(*world, command));
+  const double turned = WristTurn(world->arm().JointPositions(), arm);
+  EXPECT_NEAR(turned, kWristTurnSpeed_rad_s * 1.0, 0.1);
+  EXPECT_LT((world->arm().GripPosition() - start).norm(), 0.01);
+  const Eigen::Vector3d axis_after = world->arm().AlignmentWith("toast")->closing_axis;
+  EXPECT_NEAR(std::acos(std::clamp(axis_before.dot(axis_after), -1.0, 1.0)), turned, 0.1);
+  // Held on: it stops at the limit, however long the key is held.
+  for (int i = 0; i < 60; ++i) world->Step(CartesianTeleopAction(*world, command));
+  const double at_limit = WristTurn(world->arm().JointPositions(), arm);
+  EXPECT_LE(at_limit, kMaxWristTurn_rad + 0.02);
+  EXPECT_GT(at_limit, kMaxWristTurn_rad - 0.1);
+  // And back the other way.
+  command.wrist_turn_rad_s = -kWristTurnSpeed_rad_s;
+  for (int i = 0; i < 10; ++i) world->Step(CartesianTeleopAction(*world, command));
+  EXPECT_LT(WristTurn(world->arm().JointPositions(), arm), at_limit - 0.3);
+  command.wrist_turn_rad_s = NAN;  // a broken device: no turn
+  const std::vector<float> u = CartesianTeleopAction(*world, command);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(u[i], 0.0f);
+}
+
+// What the readout tells a person about the toast across the open fingers: off the jaw's axis,
+// and by how much, with the window the grasp itself uses.
+TEST(GraspAlignment, SaysHowFarTheToastIsOffTheJawsAxis) {
+  auto world = MakeTabletop();
+  world->Reset(5);
+  const auto a = world->arm().AlignmentWith("toast");
+  ASSERT_TRUE(a.has_value());
+  EXPECT_NEAR(a->closing_axis.norm(), 1.0, 1e-9);
+  // A 10 cm slice between fingers 12.8 cm apart: 1.4 cm either way along the closing axis, and
+  // 4 cm along the faces (the slice's half-width less a finger's).
+  EXPECT_NEAR(a->closing_window_m, 0.014, 0.002);
+  EXPECT_NEAR(a->faces_window_m, 0.04, 0.002);
+  EXPECT_FALSE(world->arm().AlignmentWith("no-such-body").has_value());
 }
 
 }  // namespace

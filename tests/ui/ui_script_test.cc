@@ -79,10 +79,26 @@ TEST(UiScriptTest, NumbersOutOfRangeOrMalformedAreRefused) {
                            "keyboard-take 0",
                            "keyboard-take -1",
                            "keyboard-take nan",
-                           "keyboard-take 3601"}) {
+                           "keyboard-take 3601",
+                           "person-takes",
+                           "person-takes 4",
+                           "person-takes 0 3",
+                           "person-takes 101 3",
+                           "person-takes 4 -1",
+                           "person-takes 4 x",
+                           "person-takes 4 3 5"}) {
     const std::string error = ErrorOf(std::string(line) + "\n");
     EXPECT_EQ(error.rfind("s.script:1: ", 0), 0u) << line << " -> '" << error << "'";
   }
+}
+
+TEST(UiScriptTest, PersonTakesParsesItsCountAndSeed) {
+  const std::vector<ScriptStep> steps = ParseUiScript("person-takes 4 17\n", "s.script");
+  ASSERT_EQ(steps.size(), 1u);
+  EXPECT_EQ(steps[0].verb, ScriptStep::Verb::kPersonTakes);
+  EXPECT_EQ(steps[0].frames, 4);
+  EXPECT_EQ(steps[0].seed, 17u);
+  EXPECT_NE(ErrorOf("person-takes 4\n").find("two numbers"), std::string::npos);
 }
 
 TEST(UiScriptTest, UnknownCommandsAndKeysAreRefusedListingTheValidOnes) {

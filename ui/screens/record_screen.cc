@@ -1,6 +1,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "ui/screens/screens.h"
@@ -47,6 +48,7 @@ void ReadTeleopKeys(const ScreenContext& context) {
       static_cast<float>(KeyDown(ImGuiKey_RightArrow) - KeyDown(ImGuiKey_LeftArrow));
   input.screen_up = static_cast<float>(KeyDown(ImGuiKey_UpArrow) - KeyDown(ImGuiKey_DownArrow));
   input.raise = static_cast<float>(KeyDown(ImGuiKey_PageUp) - KeyDown(ImGuiKey_PageDown));
+  input.turn = static_cast<float>(KeyDown(ImGuiKey_Home) - KeyDown(ImGuiKey_End));
   if (input != sent) {
     context.commands.Push(input);
     sent = input;
@@ -76,13 +78,14 @@ void DrawMappings(const StudioSnapshot& s) {
       s.teacher_view.available ? "as the 3-D view shows it" : "as the camera shows it";
   if (!ImGui::BeginTable("mappings", 2, ImGuiTableFlags_SizingFixedFit)) return;
   if (s.teleop == TeleopMode::kKeyboard) {
-    LegendRow("Arrows", Format("move the arm %s", seen).c_str());
-    LegendRow("Page Up / Down", "raise / lower it");
+    LegendRow("Arrows", Format("move the arm %s (a tap: 5 mm)", seen).c_str());
+    LegendRow("Page Up / Down", "raise / lower it (held: faster)");
+    LegendRow("Home / End", "turn the wrist (cyan: the jaw's axis)");
     LegendRow("Space", "close / open the gripper");
     LegendRow("Enter", "keep the take");
   } else {
     LegendRow("Left stick", Format("move the arm %s", seen).c_str());
-    LegendRow("Right stick", "raise / lower it");
+    LegendRow("Right stick", "up / down: raise / lower it; sideways: turn the wrist");
     LegendRow("A", "close / open the gripper");
     LegendRow("Start", "keep the take");
   }
@@ -120,6 +123,40 @@ void DrawTeleopChoice(const ScreenContext& context) {
   DrawMappings(s);
 }
 
+// The jaw's hints show once the grip point is this close to the object in the plane.
+constexpr float kNearObject_m = 0.08f;
+
+/// What to do next to grasp, from where the object lies across the open fingers and how high
+/// they are: the jaw's axis first (a close off it catches nothing however low), then the height.
+std::string GraspHint(const StudioSnapshot& s) {
+  const GripView& g = s.grip;
+  const bool band = g.grasp_max_m > g.grasp_min_m;
+  if (g.state == GripState::kClosedOnNothing) {
+    if (g.alignment_known && g.off_axis_m > g.off_axis_window_m &&
+        g.object_distance_m < kNearObject_m) {
+      return Format("It closed %.1f cm off the jaw's axis: open (Space) and line up",
+                    100 * (g.off_axis_m - g.off_axis_window_m));
+    }
+    return "";
+  }
+  if (g.state != GripState::kOpen || !band) return "";
+  // Only over the object: away from it, the arrows are what matters, not the jaw.
+  if (g.alignment_known && g.object_distance_m < kNearObject_m) {
+    if (g.off_axis_m > g.off_axis_window_m) {
+      return Format("%.1f cm off the jaw's axis (cyan): move across it, or turn the wrist",
+                    100 * (g.off_axis_m - g.off_axis_window_m));
+    }
+    if (g.beyond_pads_m > g.beyond_pads_window_m) {
+      return Format("%.1f cm beyond the finger pads: move along the cyan line",
+                    100 * (g.beyond_pads_m - g.beyond_pads_window_m));
+    }
+  }
+  const float above = s.grip_m[2] - g.grasp_max_m;
+  if (above > 0 && above < 0.05f) return Format("lower %.1f cm more before closing", 100 * above);
+  if (above <= 0) return "Low enough: close the gripper";
+  return "";
+}
+
 /// What the gripper does with the object, in words and colour: whether a grasp worked is the
 /// first thing a teacher needs to know, and a closed gripper says nothing of it.
 void DrawGripState(const StudioSnapshot& s) {
@@ -141,22 +178,31 @@ void DrawGripState(const StudioSnapshot& s) {
       StatusText(Status::kOff, s.gripper_closed ? "Gripper closed" : "Gripper open");
       break;
   }
-  // Three lines whatever the state, so what is drawn under them never moves.
-  if (s.grip.grasp_max_m > s.grip.grasp_min_m) {
-    const float height = s.grip_m[2];
-    const float above = height - s.grip.grasp_max_m;
+  // Four lines whatever the state, so what is drawn under them never moves.
+  const float height = s.grip_m[2];
+  const bool band = s.grip.grasp_max_m > s.grip.grasp_min_m;
+  const bool holding = s.grip.state == GripState::kHolding;
+  if (band && !holding) {
     ImGui::Text("Height %.1f cm; it grasps %s at %.1f-%.1f cm", 100 * height, object.c_str(),
                 100 * s.grip.grasp_min_m, 100 * s.grip.grasp_max_m);
-    if (s.grip.state == GripState::kOpen && above > 0 && above < 0.05f) {
-      ImGui::TextDisabled("lower %.1f cm more before closing", 100 * above);
-    } else if (s.grip.state == GripState::kOpen && above <= 0) {
-      StatusText(Status::kOk, "Low enough: close the gripper");
-    } else {
-      ImGui::TextUnformatted("");
-    }
+  } else if (holding) {
+    ImGui::Text("Height %.1f cm, carrying %s", 100 * height, object.c_str());
   } else {
-    ImGui::Text("Height %.1f cm", 100 * s.grip_m[2]);
+    ImGui::Text("Height %.1f cm", 100 * height);
+  }
+  ImGui::TextUnformatted(GraspHint(s).c_str());
+  const GripView& g = s.grip;
+  if (s.teleop == TeleopMode::kScripted) {
     ImGui::TextUnformatted("");
+  } else if (std::abs(g.wrist_turn_deg) >= g.wrist_limit_deg - 0.5f) {
+    StatusText(Status::kWarning,
+               Format("Wrist at its %.0f%s limit: turn it back (%s)", g.wrist_limit_deg, "\xc2\xb0",
+                      g.wrist_turn_deg > 0 ? "End" : "Home"));
+  } else {
+    // Rounded, so that a turn of -0.2 degrees does not read "-0".
+    const float turn = std::round(g.wrist_turn_deg);
+    ImGui::TextDisabled("Wrist turned %.0f%s (Home / End, up to %.0f%s either way)",
+                        turn == 0.0f ? 0.0f : turn, "\xc2\xb0", g.wrist_limit_deg, "\xc2\xb0");
   }
 }
 
@@ -176,7 +222,17 @@ void DrawTeacherView(const ScreenContext& context, float width) {
   ImGui::BeginGroup();
   ImGui::TextDisabled("Robot's camera");
   // No beacon labels on a thumbnail: they would cover it (the Beacons screen shows them).
+  const ImVec2 thumbnail = ImGui::GetCursorScreenPos();
   CameraView("camera##record", context.textures.camera, Px(kThumbnailWidth), {}, {});
+  // The jaw's axis as the robot's camera sees it, from above: the line a grasp closes along.
+  const std::array<float, 4>& jaw = s.jaw_camera_pixels;
+  if (context.textures.camera.width() > 0 && (jaw[0] != jaw[2] || jaw[1] != jaw[3])) {
+    const float scale = Px(kThumbnailWidth) / static_cast<float>(context.textures.camera.width());
+    ImGui::GetWindowDrawList()->AddLine(
+        ImVec2(thumbnail.x + jaw[0] * scale, thumbnail.y + jaw[1] * scale),
+        ImVec2(thumbnail.x + jaw[2] * scale, thumbnail.y + jaw[3] * scale),
+        IM_COL32(30, 215, 240, 235), Px(2));
+  }
   HeightGauge("height-gauge", s.grip_m[2], s.grip.grasp_min_m, s.grip.grasp_max_m,
               std::max(Px(90), 0.75f * width - Px(kThumbnailWidth) * 0.75f - Px(64)));
   ImGui::EndGroup();
@@ -293,8 +349,11 @@ void DrawRecordScreen(const ScreenContext& context) {
   ImGui::TextDisabled("click one to watch it");
   if (!s.undo_delete.empty()) {
     ImGui::SameLine();
-    if (Button(("Undo delete " + s.undo_delete + "##undo-delete").c_str(),
-               !s.recording && s.pending_take.empty(), "finish the take first")) {
+    // Enabled exactly when the controller takes it (StudioCell::RequireIdle).
+    const bool idle = !s.recording && s.pending_take.empty() && s.busy_with.empty();
+    if (Button(("Undo delete " + s.undo_delete + "##undo-delete").c_str(), idle,
+               s.busy_with.empty() ? std::string("finish the take first")
+                                   : "wait for " + s.busy_with + " to end")) {
       context.commands.Push(UndoDelete{});
     }
   }

@@ -143,6 +143,18 @@ void DrawRolloutsScreen(const ScreenContext& context) {
     ImGui::Text("on %d new scenes, beacons removed, every trained method on the same ones",
                 s.rollout_tests);
   }
+  // How long each rollout runs, and why: a slow teacher's policy is given a teacher's time.
+  if (s.rollout_limit_s > 0) {
+    if (!s.rollout_limit_note.empty()) {
+      StatusText(Status::kWarning, "Each rollout runs " + Format("%.0f s: ", s.rollout_limit_s) +
+                                       s.rollout_limit_note);
+    } else {
+      ImGui::TextDisabled(
+          "Each rollout runs %.0f s (1.5 times the longest kept take, %.1f s, "
+          "and at least the task's own limit)",
+          s.rollout_limit_s, s.longest_take_s);
+    }
+  }
   ImGui::Spacing();
   if (ImGui::BeginTable("rollouts", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("Policy (beacons removed)");

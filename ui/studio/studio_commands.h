@@ -90,8 +90,10 @@ struct TeleopInput {
   float screen_right = 0;  ///< + moves the arm towards the view's right edge
   float screen_up = 0;     ///< + moves it towards the view's top edge (away)
   float raise = 0;         ///< + lifts the tool, - lowers it
+  float turn = 0;          ///< + turns the wrist counter-clockwise seen from above
   bool operator==(const TeleopInput& o) const {
-    return screen_right == o.screen_right && screen_up == o.screen_up && raise == o.raise;
+    return screen_right == o.screen_right && screen_up == o.screen_up && raise == o.raise &&
+           turn == o.turn;
   }
   bool operator!=(const TeleopInput& o) const { return !(*this == o); }
 };

@@ -84,6 +84,15 @@ struct GripView {
   /// The grip point's heights above the table at which closing holds the object (both 0 when
   /// the cell does not know).
   float grasp_min_m = 0, grasp_max_m = 0;
+  /// Where the object lies across the open fingers (Ur5Arm::AlignmentWith): its centre off the
+  /// jaw's closing axis, and how far it may be for a close to hold it; known = false when the
+  /// cell cannot tell.
+  bool alignment_known = false;
+  float off_axis_m = 0, off_axis_window_m = 0;
+  float beyond_pads_m = 0, beyond_pads_window_m = 0;
+  float object_distance_m = 0;  ///< from the grip point to the object's centre, in the plane
+  /// How far the wrist is turned from home (degrees, counter-clockwise from above), and its limit.
+  float wrist_turn_deg = 0, wrist_limit_deg = 90;
 };
 
 /// The teacher's 3-D view of the cell: a camera they orbit and zoom (the simulated cell's free
@@ -96,6 +105,9 @@ struct TeacherView {
   /// Where the view shows the grip point, and the spot under it where the drop line lands (on
   /// the toast, the plate or the table), in image pixels.
   std::array<float, 2> grip_pixel{}, spot_pixel{};
+  /// The ends of the jaw's closing axis drawn through the spot (where the fingers close), in
+  /// image pixels.
+  std::array<float, 4> jaw_pixels{};
 };
 
 /// A teleop the Record screen offers, and whether it can be used now.
@@ -340,6 +352,9 @@ struct StudioSnapshot {
   TeleopInput teleop_input;           ///< what the controller drives the arm by now (keys, sticks)
   std::array<float, 3> grip_m{};      ///< the arm's grip point in the table frame
   std::array<float, 2> grip_pixel{};  ///< and where the camera view shows it
+  /// The jaw's closing axis through the point under the grip, as the camera view shows it (both
+  /// ends, image pixels; all 0 when the cell cannot tell).
+  std::array<float, 4> jaw_camera_pixels{};
   bool gripper_closed = false;
   GripView grip;
   TeacherView teacher_view;
@@ -373,7 +388,11 @@ struct StudioSnapshot {
   bool rollouts_running = false;
   bool rollouts_cancelling = false;  ///< Cancel was pressed; the rollouts stop at their next step
   int rollout_steps_done = 0, rollout_steps_total = 0;  ///< of the running rollouts, all methods
-  int rollout_tests = 10;         ///< scenes per rollout run (recon-studio --rollout-tests)
+  int rollout_tests = 10;  ///< scenes per rollout run (recon-studio --rollout-tests)
+  /// How long each rollout (and real trial) runs, seconds, and why (cli::SessionRolloutSteps):
+  /// the world's episode or 1.5 times the longest kept take, with a word when capped.
+  double rollout_limit_s = 0, longest_take_s = 0;
+  std::string rollout_limit_note;
   bool rollouts_playing = false;  ///< the playback advances by itself (10 steps a second)
 
   std::string report_path;  ///< empty until a report was written

@@ -73,20 +73,38 @@ const char* PhaseName(KeyboardPerson::Phase phase) {
 }
 
 std::string KeyboardPerson::Describe() const {
-  char text[256];
+  char text[320];
+  const std::string phase =
+      phase_ == Phase::kFinished && ended_in_ != Phase::kFinished
+          ? std::string("finished (the take ended while ") + PhaseName(ended_in_) + ")"
+          : PhaseName(phase_);
   std::snprintf(text, sizeof(text),
                 "%s after %d grasp attempt(s); toast seen at (%.0f, %.0f) px, plate at (%.0f, "
                 "%.0f) px%s%s",
-                PhaseName(phase_), grasp_attempts_, toast_.x, toast_.y, plate_.x, plate_.y,
+                phase.c_str(), grasp_attempts_, toast_.x, toast_.y, plate_.x, plate_.y,
                 lost_.empty() ? "" : ": ", lost_.c_str());
   return text;
 }
 
 void KeyboardPerson::Enter(Phase phase) {
   phase_ = phase;
+  axes_[0] = axes_[1] = Axis{};
   settled_frames_ = 0;
   space_sent_ = false;
   phase_started_ = Clock::now();
+  if (pace_.ideal()) return;
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  lag_s_ = pace_.reaction_min_s + (pace_.reaction_max_s - pace_.reaction_min_s) * uniform(rng_);
+  // At each step of the task the person may stop to look before going on.
+  if (phase != Phase::kFinished && phase != Phase::kLost &&
+      uniform(rng_) < pace_.pause_probability) {
+    const double pause =
+        pace_.pause_min_s + (pace_.pause_max_s - pace_.pause_min_s) * uniform(rng_);
+    paused_until_ = phase_started_ + std::chrono::duration_cast<Clock::duration>(
+                                         std::chrono::duration<double>(pause));
+  }
+  // A grasp that closed on nothing: look at the toast again, more carefully.
+  if (phase == Phase::kReopen) Aim(std::pow(pace_.retry_aim_factor, grasp_attempts_));
 }
 
 bool KeyboardPerson::Look(const TeacherView& view) {
@@ -102,20 +120,89 @@ bool KeyboardPerson::Look(const TeacherView& view) {
     t.y = TopFaceMiddle(blob);
     t.tolerance_x = std::max(1.0f, share * static_cast<float>(blob.right - blob.left + 1));
     t.tolerance_y = std::max(1.0f, share * static_cast<float>(blob.bottom - blob.top + 1));
+    t.width = static_cast<float>(blob.right - blob.left + 1);
+    t.height = static_cast<float>(blob.bottom - blob.top + 1);
     return t;
   };
-  toast_ = target(*toast, kToastTolerance);
+  toast_seen_ = toast_ = target(*toast, kToastTolerance);
   plate_ = target(*plate, kPlateTolerance);
+  Aim(1.0);
   return true;
+}
+
+PersonPace PersonPace::Realistic(uint64_t seed) {
+  PersonPace pace;
+  pace.seed = seed;
+  pace.reaction_min_s = 0.2;
+  pace.reaction_max_s = 0.4;
+  pace.pause_probability = 0.35;
+  pace.pause_min_s = 0.4;
+  pace.pause_max_s = 1.8;
+  pace.depth_aim_sigma = 0.12;
+  pace.across_aim_sigma = 0.07;
+  return pace;
+}
+
+KeyboardPerson::KeyboardPerson(const PersonPace& pace) : pace_(pace), rng_(pace.seed) {
+  lag_s_ = pace_.reaction_min_s;
+}
+
+void KeyboardPerson::Aim(double scale) {
+  if (pace_.depth_aim_sigma <= 0 && pace_.across_aim_sigma <= 0) return;
+  std::normal_distribution<double> normal(0.0, 1.0);
+  // The view's vertical is the table's depth from where the person sits: the hardest to judge.
+  toast_.x = toast_seen_.x +
+             static_cast<float>(scale * pace_.across_aim_sigma * normal(rng_)) * toast_seen_.width;
+  toast_.y = toast_seen_.y +
+             static_cast<float>(scale * pace_.depth_aim_sigma * normal(rng_)) * toast_seen_.height;
+}
+
+FrameInput KeyboardPerson::Delayed(FrameInput decision) {
+  const Clock::time_point now = Clock::now();
+  decisions_.push_back({now, std::move(decision)});
+  FrameInput keys;
+  const Clock::time_point due =
+      now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(lag_s_));
+  while (!decisions_.empty() && decisions_.front().at <= due) {
+    held_ = std::move(decisions_.front().keys);
+    // A key pressed once (Space, Enter) is pressed once, when its decision reaches the hands.
+    keys.keys_pressed.insert(keys.keys_pressed.end(), held_.keys_pressed.begin(),
+                             held_.keys_pressed.end());
+    decisions_.pop_front();
+  }
+  keys.keys_down = held_.keys_down;
+  return keys;
+}
+
+int KeyboardPerson::AxisKey(Axis& axis, float error, float tolerance) {
+  const int want = error > tolerance ? 1 : (error < -tolerance ? -1 : 0);
+  if (pace_.ideal()) return want;
+  // A person who lags sees an overshoot late; after the first, they tap: one press, then wait
+  // for the view to show where it went (a reaction time) before the next.
+  const Clock::time_point now = Clock::now();
+  if (want != 0 && axis.last_want != 0 && want != axis.last_want) axis.tapping = true;
+  if (want != 0) axis.last_want = want;
+  if (want == 0 || !axis.tapping) return want;
+  if (now < axis.wait_until) return 0;
+  if (axis.pressed) {
+    axis.pressed = false;
+    axis.wait_until =
+        now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(lag_s_));
+    return 0;
+  }
+  axis.pressed = true;
+  return want;
 }
 
 bool KeyboardPerson::Steer(const StudioSnapshot& s, const Target& target, FrameInput& keys) {
   const float ex = target.x - s.teacher_view.spot_pixel[0];
   const float ey = target.y - s.teacher_view.spot_pixel[1];
-  if (ex > target.tolerance_x) Hold(keys, ImGuiKey_RightArrow);
-  if (ex < -target.tolerance_x) Hold(keys, ImGuiKey_LeftArrow);
-  if (ey < -target.tolerance_y) Hold(keys, ImGuiKey_UpArrow);  // image rows grow downwards
-  if (ey > target.tolerance_y) Hold(keys, ImGuiKey_DownArrow);
+  const int right = AxisKey(axes_[0], ex, target.tolerance_x);
+  const int down = AxisKey(axes_[1], ey, target.tolerance_y);  // image rows grow downwards
+  if (right > 0) Hold(keys, ImGuiKey_RightArrow);
+  if (right < 0) Hold(keys, ImGuiKey_LeftArrow);
+  if (down < 0) Hold(keys, ImGuiKey_UpArrow);
+  if (down > 0) Hold(keys, ImGuiKey_DownArrow);
   const bool on = std::abs(ex) <= target.tolerance_x && std::abs(ey) <= target.tolerance_y;
   if (!on) {
     settled_frames_ = 0;
@@ -126,11 +213,28 @@ bool KeyboardPerson::Steer(const StudioSnapshot& s, const Target& target, FrameI
 }
 
 FrameInput KeyboardPerson::Next(const StudioSnapshot& s) {
+  if (pace_.ideal()) return Decide(s);
+  FrameInput decision;
+  if (Clock::now() >= paused_until_ || phase_ == Phase::kWaiting) {
+    decision = Decide(s);
+  } else {
+    last_view_ = s.teacher_view.frame;  // looking, the hands still
+    if (!s.recording && phase_ != Phase::kLost) {
+      ended_in_ = phase_;
+      Enter(Phase::kFinished);
+    }
+  }
+  return Delayed(std::move(decision));
+}
+
+FrameInput KeyboardPerson::Decide(const StudioSnapshot& s) {
   FrameInput keys;
   const float height = s.grip_m[2];
   const float grasp_top = s.grip.grasp_max_m;
   const double in_phase_s = std::chrono::duration<double>(Clock::now() - phase_started_).count();
-  if (phase_ != Phase::kWaiting && phase_ != Phase::kLost && !s.recording) {
+  if (phase_ != Phase::kWaiting && phase_ != Phase::kLost && phase_ != Phase::kFinished &&
+      !s.recording) {
+    ended_in_ = phase_;
     Enter(Phase::kFinished);
   }
   switch (phase_) {

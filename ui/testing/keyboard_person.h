@@ -3,13 +3,35 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <optional>
+#include <random>
 #include <string>
 
 #include "ui/platform/frame_input.h"
 #include "ui/studio/studio_snapshot.h"
 
 namespace recon::ui {
+
+/// How a person's eyes and hands lag and err. The default is the ideal person: it acts the frame
+/// it sees, never pauses and aims at the middle of what it sees. Realistic(seed) is a newcomer at
+/// the keys, as a person was measured teaching in the studio: reaction times of 0.2-0.4 s (keys
+/// pressed and let go that late, so the arm overshoots and is corrected), a pause to look at
+/// each step of the task with probability 0.35 (0.4-1.8 s), and the toast's middle misjudged
+/// along the view's depth (a Gaussian error of 12 % of its size in the view, 7 % across), judged
+/// again more carefully after a grasp that closed on nothing. Every draw comes from `seed`.
+struct PersonPace {
+  uint64_t seed = 0;
+  double reaction_min_s = 0, reaction_max_s = 0;
+  double pause_probability = 0, pause_min_s = 0, pause_max_s = 0;
+  double depth_aim_sigma = 0, across_aim_sigma = 0;
+  double retry_aim_factor = 0.6;
+
+  static PersonPace Realistic(uint64_t seed);
+  bool ideal() const {
+    return reaction_max_s <= 0 && pause_probability <= 0 && depth_aim_sigma <= 0;
+  }
+};
 
 /// A scripted person giving a keyboard demonstration of the tabletop task from what the Record
 /// screen shows, and nothing else: the teacher's 3-D view (the toast and the plate picked out by
@@ -38,6 +60,8 @@ class KeyboardPerson {
     kLost,      ///< could not see the toast or the plate
   };
 
+  explicit KeyboardPerson(const PersonPace& pace = {});
+
   /// The keys for the next frame, given what the screen shows now.
   FrameInput Next(const StudioSnapshot& s);
 
@@ -52,10 +76,25 @@ class KeyboardPerson {
   struct Target {
     float x = 0, y = 0;  ///< in the view's pixels
     float tolerance_x = 0, tolerance_y = 0;
+    float width = 0, height = 0;  ///< of what the view shows, pixels
   };
 
   /// Finds the toast and the plate in the 3-D view; false when either is not in sight.
   bool Look(const TeacherView& view);
+  /// What the person decides now (Decide) reaches the keys a reaction time later.
+  FrameInput Decide(const StudioSnapshot& s);
+  FrameInput Delayed(FrameInput decision);
+  /// Where the person thinks the toast's middle is: its middle, off by the aim error.
+  void Aim(double scale);
+  /// How a person steers one axis of the view: the key held (-1, 0, +1) and, once they have
+  /// gone past the target, taps with a look between them.
+  struct Axis {
+    int last_want = 0;
+    bool tapping = false, pressed = false;
+    std::chrono::steady_clock::time_point wait_until{};
+  };
+  /// The key for one axis whose target lies `error` pixels away (AxisKey's rule above).
+  int AxisKey(Axis& axis, float error, float tolerance);
   /// The arrows that move the spot toward `target`; true once it has stayed on it.
   bool Steer(const StudioSnapshot& s, const Target& target, FrameInput& keys);
   void Enter(Phase phase);
@@ -68,6 +107,20 @@ class KeyboardPerson {
   bool space_sent_ = false;  ///< Space pressed in this phase
   Clock::time_point phase_started_ = Clock::now();
   std::string lost_;
+
+  Phase ended_in_ = Phase::kFinished;  ///< what it was doing when the take ended
+  PersonPace pace_;
+  Axis axes_[2];  ///< the view's right and down
+  std::mt19937_64 rng_;
+  Target toast_seen_;  ///< the toast's middle as the view shows it, before the aim error
+  Clock::time_point paused_until_{};
+  double lag_s_ = 0;
+  struct Decision {
+    Clock::time_point at;
+    FrameInput keys;
+  };
+  std::deque<Decision> decisions_;  ///< made, not yet reached the keys
+  FrameInput held_;                 ///< the keys down now
 };
 
 const char* PhaseName(KeyboardPerson::Phase phase);

@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <thread>
 
@@ -142,7 +143,7 @@ void UiDriver::Hold(int imgui_key, double seconds) {
   }
 }
 
-KeyboardPerson UiDriver::KeyboardTake(double timeout_s) {
+KeyboardPerson UiDriver::KeyboardTake(double timeout_s, const PersonPace& pace) {
   if (!snapshot_) throw UserError("keyboard-take needs the screen's snapshot (none was set)");
   WaitFrames(2);
   const StudioSnapshot first = snapshot_();
@@ -151,7 +152,7 @@ KeyboardPerson UiDriver::KeyboardTake(double timeout_s) {
         "keyboard-take: no keyboard take is running (choose Keyboard and click Start "
         "recording first)");
   }
-  KeyboardPerson person;
+  KeyboardPerson person(pace);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (person.phase() != KeyboardPerson::Phase::kFinished) {
     if (person.phase() == KeyboardPerson::Phase::kLost) {
@@ -170,6 +171,57 @@ KeyboardPerson UiDriver::KeyboardTake(double timeout_s) {
   }
   WaitFrames(3);  // release the keys and show what became of the take
   return person;
+}
+
+UiDriver::PersonTakesResult UiDriver::PersonTakes(int demonstrations, uint64_t seed,
+                                                  int max_tries) {
+  if (!snapshot_) throw UserError("person-takes needs the screen's snapshot (none was set)");
+  PersonTakesResult result;
+  for (int demo = 0; demo < demonstrations; ++demo) {
+    bool done = false;
+    for (int attempt = 0; attempt < max_tries && !done; ++attempt) {
+      const size_t before = snapshot_().episodes.size();
+      Click("Start recording");
+      const uint64_t person_seed = seed * 1000003ULL + static_cast<uint64_t>(result.tries);
+      ++result.tries;
+      int samples = 0;
+      std::string how;
+      try {
+        const KeyboardPerson person = KeyboardTake(120, PersonPace::Realistic(person_seed));
+        result.grasp_attempts += person.grasp_attempts();
+        how = person.Describe();
+      } catch (const UserError& e) {
+        // The person lost track or ran out of patience: the take is given up below.
+        how = e.what();
+      }
+      WaitFrames(3);
+      StudioSnapshot s = snapshot_();
+      samples = s.recording ? s.recording_samples : 0;
+      if (s.episodes.size() > before && s.episodes.back().succeeded) {
+        done = true;
+        samples = s.episodes.back().samples;
+        result.kept_seconds += s.episodes.back().seconds;
+      } else {
+        if (!s.pending_take.empty()) samples = s.recording_samples;
+        if (s.episodes.size() > before) {
+          throw UserError("person-takes: a take that was not done was kept");
+        }
+        Click("Discard");
+        WaitFrames(3);
+      }
+      // Every take counts, kept or not: what the teacher's time is made of.
+      result.total_seconds += samples * 0.1;
+      std::printf("person-takes: demonstration %d, try %d: %d samples, %s; %s\n", demo + 1,
+                  attempt + 1, samples, done ? "done" : "discarded", how.c_str());
+    }
+    if (!done) {
+      throw UserError("person-takes: demonstration " + std::to_string(demo + 1) + " of " +
+                      std::to_string(demonstrations) + " was not done in " +
+                      std::to_string(max_tries) + " tries");
+    }
+    ++result.kept;
+  }
+  return result;
 }
 
 void UiDriver::WaitIdle(double timeout_s) {
@@ -235,6 +287,16 @@ void UiDriver::RunStep(const ScriptStep& step) {
     case ScriptStep::Verb::kKeyboardTake:
       KeyboardTake(step.seconds);
       break;
+    case ScriptStep::Verb::kPersonTakes: {
+      const PersonTakesResult r = PersonTakes(step.frames, step.seed);
+      std::printf(
+          "person-takes: %d demonstrations kept in %d tries (%d grasp attempts); "
+          "%.1f s recorded in kept takes, %.1f s in all (seed %llu)\n",
+          r.kept, r.tries, r.grasp_attempts, r.kept_seconds, r.total_seconds,
+          static_cast<unsigned long long>(step.seed));
+      std::fflush(stdout);
+      break;
+    }
     case ScriptStep::Verb::kScreenshot:
       // ParseUiScript keeps the name relative and inside the folder.
       report::WritePng(Screenshot(),

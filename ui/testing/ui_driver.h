@@ -62,8 +62,19 @@ class UiDriver {
   /// Gives the keyboard take that has just been started (on the Record screen, Keyboard chosen)
   /// as KeyboardPerson would, one frame of keys at a time, until the take ends. UserError when
   /// no take runs, the person loses track, or it takes longer than `timeout_s`. Returns the
-  /// person, to ask how it went.
-  KeyboardPerson KeyboardTake(double timeout_s);
+  /// person, to ask how it went. `pace`: the ideal person by default, or a realistic one
+  /// (PersonPace::Realistic).
+  KeyboardPerson KeyboardTake(double timeout_s, const PersonPace& pace = {});
+  /// What PersonTakes cost.
+  struct PersonTakesResult {
+    int kept = 0, tries = 0, grasp_attempts = 0;
+    double kept_seconds = 0, total_seconds = 0;  ///< recorded, from the takes' sample counts
+  };
+  /// The realistic person (PersonPace::Realistic, seeded by `seed` and the try) records
+  /// `demonstrations` takes in which the task is done, from the Record screen (Keyboard chosen):
+  /// Start recording, the take, and Discard when it ended undone (or the person lost track), up
+  /// to `max_tries` tries per demonstration. UserError when one needs more.
+  PersonTakesResult PersonTakes(int demonstrations, uint64_t seed, int max_tries = 8);
   /// Runs frames until the idle check holds; UserError after `timeout_s` seconds.
   void WaitIdle(double timeout_s);
   /// Where `screenshot` writes relative paths (default: the working directory).

@@ -17,7 +17,7 @@ namespace recon::ui {
 namespace {
 
 constexpr const char* kVerbs =
-    "click, type, press, hold, wait, sleep, wait-idle, keyboard-take, screenshot";
+    "click, type, press, hold, wait, sleep, wait-idle, keyboard-take, person-takes, screenshot";
 
 // A number of a script line, checked as a command-line option's is (engine/core/number_check).
 double ParseNumber(const std::string& text, const std::string& what, double lo, double hi,
@@ -98,6 +98,21 @@ ScriptStep ParseStep(const std::string& verb, const std::string& argument) {
     // has just been started, from what the Record screen shows.
     step.verb = ScriptStep::Verb::kKeyboardTake;
     step.seconds = argument.empty() ? 90.0 : ParseSeconds(argument, "keyboard-take");
+  } else if (verb == "person-takes") {
+    // person-takes N SEED: the realistic person (PersonPace::Realistic) records N demonstrations
+    // in which the task is done, discarding and recording again a take that is not, as a person
+    // at the keys does (UiDriver::PersonTakes).
+    step.verb = ScriptStep::Verb::kPersonTakes;
+    std::istringstream words(argument);
+    std::string demos, seed, extra;
+    words >> demos >> seed >> extra;
+    if (seed.empty() || !extra.empty()) {
+      throw UserError("person-takes needs two numbers: the demonstrations to keep and a seed");
+    }
+    step.frames =
+        static_cast<int>(ParseNumber(demos, "person-takes' demonstrations", 1, 100, true, false));
+    step.seed = static_cast<uint64_t>(
+        ParseNumber(seed, "person-takes' seed", 0, 4294967295.0, true, false));
   } else if (verb == "screenshot") {
     step.verb = ScriptStep::Verb::kScreenshot;
     step.text = CheckScreenshotName(argument);

@@ -5,6 +5,7 @@
 // lines 1-39 have spent ten minutes training, and nothing a script names can reach outside the
 // folder its screenshots go to.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct ScriptStep {
     kSleep,
     kWaitIdle,
     kKeyboardTake,
+    kPersonTakes,
     kScreenshot
   };
   Verb verb = Verb::kWait;
@@ -30,7 +32,8 @@ struct ScriptStep {
   std::string text;
   int key = -1;        ///< press, hold: an ImGuiKey value
   double seconds = 0;  ///< hold, sleep, wait-idle, keyboard-take
-  int frames = 0;      ///< wait
+  int frames = 0;      ///< wait; person-takes: the demonstrations to keep
+  uint64_t seed = 0;   ///< person-takes: the realistic person's seed
 };
 
 /// The longest hold, sleep, wait-idle or keyboard-take a script may ask for, and the most frames a

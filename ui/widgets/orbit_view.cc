@@ -39,6 +39,13 @@ std::optional<SetTeacherView> OrbitView(const char* id, const ImageTexture& text
                 IM_COL32(255, 255, 255, 220), 1.5f);
   draw->AddLine(ImVec2(grip.x, grip.y - arm), ImVec2(grip.x, grip.y + arm),
                 IM_COL32(255, 255, 255, 220), 1.5f);
+  // The jaw's closing axis through the spot: a close holds what lies on it between the fingers.
+  const std::array<float, 4>& jaw = view.jaw_pixels;
+  if (jaw[0] != jaw[2] || jaw[1] != jaw[3]) {
+    draw->AddLine(ImVec2(origin.x + jaw[0] * scale, origin.y + jaw[1] * scale),
+                  ImVec2(origin.x + jaw[2] * scale, origin.y + jaw[3] * scale),
+                  IM_COL32(30, 215, 240, 235), Px(2.5f));
+  }
 
   // A drag is measured from where it started, against the view as it was then: the snapshot
   // lags the commands by a frame or two, and adding each frame's motion to it would lose some.
