@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "app/cli/result_staleness.h"
@@ -50,11 +51,24 @@ void AddFacts(const store::Session& session, const json& info, report::SessionRe
                ", " + std::to_string(b.dim) + " values, " + b.unit + ")";
   }
   r.facts.emplace_back("Beacons", beacons.empty() ? "none" : beacons);
+  // Who taught is what the demonstrations say (each records its teleop), not what the session
+  // was created with: the studio's keyboard takes are keyboard takes.
+  std::map<std::string, int> teachers;
+  for (const store::EpisodeEntry& e : session.demos()) {
+    if (e.problem.empty()) ++teachers[e.meta.source.empty() ? "unknown" : e.meta.source];
+  }
+  std::string taught_by;
+  for (const auto& [source, count] : teachers) {
+    taught_by += (taught_by.empty() ? "" : ", ") + source + " (" + std::to_string(count) +
+                 (count == 1 ? " take)" : " takes)");
+  }
   std::string devices;
   for (const store::DeviceEntry& d : m.devices) {
+    if (d.role == "teleop") continue;  // said below, from the takes
     devices += (devices.empty() ? "" : "; ") + d.role + ": " + d.kind + " (" + d.detail + ")";
   }
-  r.facts.emplace_back("Devices", devices);
+  r.facts.emplace_back("Devices", devices.empty() ? "none recorded" : devices);
+  r.facts.emplace_back("Taught by", taught_by.empty() ? "no demonstrations yet" : taught_by);
   r.facts.emplace_back("Demonstrations",
                        std::to_string(info["episodes"].get<int>()) + " (" +
                            std::to_string(info["demo_samples"].get<int64_t>()) + " samples; " +
@@ -200,10 +214,16 @@ void AddLedger(const json& ledger, report::SessionReport& r) {
     r.ledger.push_back({"RECON (Play)" + n, demo_s, placements, play, demo_s + placements + play,
                         kPaperSecondsPerDemo * demos + kPaperReconPlayExtra});
   }
+  char unkept[320];
+  std::snprintf(unkept, sizeof(unkept),
+                " In all the teacher spent %.1f s: the table counts kept takes only; %.1f s went "
+                "into %d takes discarded or recorded over and %.1f s into countdowns.",
+                ledger["teacher_total_s"].get<double>(), ledger["discarded_s"].get<double>(),
+                ledger["discarded_takes"].get<int>(), ledger["countdowns_s"].get<double>());
   r.ledger_note = ledger["note"].get<std::string>() +
                   ". Paper: 16.6 s per demonstration; RECON (Play) adds 8.6 s in all (66.4 s vs "
                   "75.0 s for 4 demonstrations), scaled here to " +
-                  std::to_string(demos) + " demonstrations.";
+                  std::to_string(demos) + " demonstrations." + unkept;
 }
 
 void AddProbe(const store::Session& session, report::SessionReport& r) {

@@ -44,7 +44,13 @@ json TeachingLedgerJson(const store::Session& session) {
   int usable = 0;
   for (const store::EpisodeEntry& e : session.demos()) usable += !e.flags.bad && e.problem.empty();
   const bool timed = m.step_seconds > 0;
+  const double unkept = m.discarded_seconds + m.countdown_seconds;
   return {{"timed", timed},
+          {"discarded_takes", m.discarded_takes},
+          {"discarded_s", m.discarded_seconds},
+          {"countdowns_s", m.countdown_seconds},
+          // Everything the teacher spent: kept and unkept takes, countdowns, play, beacons.
+          {"teacher_total_s", demos + play + placements + unkept},
           {"demonstrations", usable},
           {"demonstrations_s", demos},
           {"seconds_per_demonstration", usable > 0 ? demos / usable : 0.0},

@@ -154,7 +154,10 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   // A report written before (by the studio or `recon report`) can be opened too.
   if (report_written) s.report_path = report;
   const nlohmann::json ledger = cli::TeachingLedgerJson(session);
-  s.teacher_seconds = ledger["recon_play_total_s"].get<double>();
+  s.teacher_seconds = ledger["teacher_total_s"].get<double>();
+  s.teacher_discarded_seconds = ledger["discarded_s"].get<double>();
+  s.teacher_discarded_takes = ledger["discarded_takes"].get<int>();
+  s.teacher_countdown_seconds = ledger["countdowns_s"].get<double>();
   s.teacher_demo_seconds = ledger["demonstrations_s"].get<double>();
   s.teacher_play_seconds = ledger["play_s"].get<double>();
   s.teacher_placement_seconds = ledger["beacon_placements_s"].get<double>();

@@ -120,6 +120,13 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   world_ = std::move(made);
   HoldEmergencyStop();
   session_ = std::move(opened);
+  // The teleop the teacher chose last in this session, where this cell offers it now (a
+  // gamepad is chosen again once one is plugged in and picked).
+  const std::string& remembered = session_->manifest().teleop;
+  if (remembered == "keyboard") teleop_mode_ = ui::TeleopMode::kKeyboard;
+  if (remembered == "scripted" && source_->HasScriptedTeacher()) {
+    teleop_mode_ = ui::TeleopMode::kScripted;
+  }
   ResetToNextScene();
   picking_session_ = false;
   current_step_ = teach::Step::kCell;
@@ -300,6 +307,10 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
         std::chrono::duration<double>(options_.countdown_s));
   }
   // A person's take ends where a person ends it: the goal holds and the gripper is clear.
+  // A person's countdown is the teacher's time too (the ledger counts it).
+  if (teleop_mode_ != ui::TeleopMode::kScripted && options_.countdown_s > 0) {
+    session_->AddUnkeptTime(0, 0.0, options_.countdown_s);
+  }
   recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource(),
                                                     teleop_mode_ == ui::TeleopMode::kScripted
                                                         ? teach::DemoRecorder::TakeEnd::kScripted
@@ -370,6 +381,11 @@ void StudioCell::TakeEnded() {
 void StudioCell::Commit() {
   Changed();
   pending_take_.clear();
+  // A take recorded over still cost its teacher the time it took.
+  if (replace_) {
+    const double replaced_s = session_->Find(*replace_).meta.teaching_seconds;
+    session_->AddUnkeptTime(1, replaced_s, 0.0);
+  }
   const store::EpisodeEntry& e = session_->CommitDemo(recorder_->Take(), replace_);
   status_ = "Committed " + e.name + " (" + std::to_string(e.meta.num_samples) + " samples).";
   replace_.reset();

@@ -120,6 +120,10 @@ void StudioCell::Apply(const ui::StopRecording&) {
 }
 
 void StudioCell::Apply(const ui::DiscardRecording&) {
+  // A discarded take still cost the teacher its time: the ledger keeps it.
+  if (recorder_ && recorder_->samples() > 0 && session_) {
+    session_->AddUnkeptTime(1, recorder_->samples() * world_->StepSeconds(), 0.0);
+  }
   homing_take_ = false;
   recorder_.reset();
   replace_.reset();
@@ -200,6 +204,11 @@ void StudioCell::Apply(const ui::SetTeleopMode& c) {
     throw UserError("a real cell has no scripted teacher: teach with the keyboard or a gamepad");
   }
   teleop_mode_ = c.mode;
+  if (session_ && session_->manifest().cell == source_->Kind()) {
+    session_->RememberTeleop(c.mode == ui::TeleopMode::kScripted   ? "scripted"
+                             : c.mode == ui::TeleopMode::kKeyboard ? "keyboard"
+                                                                   : "gamepad");
+  }
 }
 
 void StudioCell::Apply(const ui::TeleopInput& c) {

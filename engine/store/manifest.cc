@@ -79,7 +79,11 @@ std::string ManifestToJson(const SessionManifest& m) {
                      {"seeds", {{"session", m.seed}}},
                      {"ledger",
                       {{"seconds_per_beacon_placement", m.seconds_per_beacon_placement},
-                       {"placements_per_beacon", m.placements_per_beacon}}},
+                       {"placements_per_beacon", m.placements_per_beacon},
+                       {"discarded_takes", m.discarded_takes},
+                       {"discarded_seconds", m.discarded_seconds},
+                       {"countdown_seconds", m.countdown_seconds},
+                       {"teleop", m.teleop}}},
                      {"episodes", flags},
                      {"beacon_assignments", m.beacon_assignments}};
   return root.dump(2) + "\n";
@@ -160,6 +164,24 @@ SessionManifest ManifestFromJson(const std::string& text, const std::string& sou
   const FieldReader ledger = top.Object("ledger");
   m.seconds_per_beacon_placement = ledger.Number("seconds_per_beacon_placement");
   m.placements_per_beacon = static_cast<int>(ledger.NonNegativeInteger("placements_per_beacon"));
+  // Optional: sessions from before the ledger counted what was not kept lack them.
+  if (ledger.Has("discarded_takes")) {
+    m.discarded_takes = static_cast<int>(ledger.NonNegativeInteger("discarded_takes"));
+  }
+  m.discarded_seconds = ledger.OptionalNumber("discarded_seconds", 0.0);
+  m.countdown_seconds = ledger.OptionalNumber("countdown_seconds", 0.0);
+  for (const char* field : {"discarded_seconds", "countdown_seconds"}) {
+    const double v = ledger.OptionalNumber(field, 0.0);
+    if (!(v >= 0) || !std::isfinite(v)) {
+      ledger.Fail(ledger.Name(field), "must be a number of seconds >= 0");
+    }
+  }
+  m.teleop = ledger.OptionalString("teleop", "");
+  if (!m.teleop.empty() && m.teleop != "scripted" && m.teleop != "keyboard" &&
+      m.teleop != "gamepad") {
+    ledger.Fail(ledger.Name("teleop"),
+                "must be \"scripted\", \"keyboard\" or \"gamepad\" (got \"" + m.teleop + "\")");
+  }
 
   if (root.contains("beacon_assignments")) {  // optional: sessions from before the studio lack it
     const FieldReader assignments = top.Object("beacon_assignments");

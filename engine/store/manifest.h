@@ -65,6 +65,14 @@ struct SessionManifest {
   /// measured 2.3 s each, twice per beacon), for the teaching-time ledger.
   double seconds_per_beacon_placement = 2.3;
   int placements_per_beacon = 2;
+  /// The teacher's time that no kept episode shows: takes discarded or recorded over (their
+  /// recorded seconds), and the countdowns before a person's takes. Absent in older sessions: 0.
+  int discarded_takes = 0;
+  double discarded_seconds = 0;
+  double countdown_seconds = 0;
+  /// The teleop the teacher chose last in the studio ("scripted", "keyboard", "gamepad"), which a
+  /// reopened session starts with; empty: the studio's default.
+  std::string teleop;
 
   std::map<std::string, EpisodeFlags> episode_flags;  ///< by episode name; absent = defaults
   /// Which object the teacher says each beacon is stuck on (beacon name -> object name), set in

@@ -110,6 +110,12 @@ class Session {
   void AssignSplits(double valid_fraction, uint64_t seed);
   /// Records which object beacon `beacon` is stuck on. UserError for an unknown beacon.
   void AssignBeacon(const std::string& beacon, const std::string& object);
+  /// The teaching-time ledger's share that no kept episode shows: a take discarded or recorded
+  /// over (`seconds` recorded), or a countdown before a person's take (`countdown_seconds`).
+  void AddUnkeptTime(int takes, double seconds, double countdown_seconds);
+  /// The teleop the teacher chose ("scripted", "keyboard", "gamepad"), kept for the next time the
+  /// session is opened.
+  void RememberTeleop(const std::string& teleop);
   /// Records the calibration file (copied into the session as calibration.json).
   void AttachCalibration(const std::string& calibration_path);
   void SetNote(const std::string& name, const std::string& note);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "engine/calib/calibration.h"
@@ -157,6 +158,27 @@ void Session::AssignBeacon(const std::string& beacon, const std::string& object)
                                  [&](const BeaconSpec& b) { return b.name == beacon; });
   if (!known) throw UserError("session " + dir_ + " has no beacon '" + beacon + "'");
   manifest_.beacon_assignments[beacon] = object;
+  SaveManifestNow();
+}
+
+void Session::AddUnkeptTime(int takes, double seconds, double countdown_seconds) {
+  RequireWritable();
+  if (takes < 0 || !(seconds >= 0) || !(countdown_seconds >= 0)) {
+    throw std::invalid_argument("AddUnkeptTime: counts and seconds must be >= 0");
+  }
+  manifest_.discarded_takes += takes;
+  manifest_.discarded_seconds += seconds;
+  manifest_.countdown_seconds += countdown_seconds;
+  SaveManifestNow();
+}
+
+void Session::RememberTeleop(const std::string& teleop) {
+  RequireWritable();
+  if (teleop != "scripted" && teleop != "keyboard" && teleop != "gamepad") {
+    throw UserError("unknown teleop '" + teleop + "' (valid: scripted, keyboard, gamepad)");
+  }
+  if (manifest_.teleop == teleop) return;
+  manifest_.teleop = teleop;
   SaveManifestNow();
 }
 

@@ -231,6 +231,38 @@ TEST_F(StudioControllerTest, TheSceneBeforeStartIsTheTakesScene) {
   }
 }
 
+// The teacher's time is the truth: a discarded take and a countdown count in the ledger, and the
+// teleop the teacher chose is the one a reopened session starts with.
+TEST_F(StudioControllerTest, EveryTakeCountsAndTheTeleopIsRemembered) {
+  StudioOptions options = Options();
+  options.countdown_s = 0.5;
+  {
+    StudioController controller(options);
+    controller.Push(ui::SetTeleopMode{ui::TeleopMode::kKeyboard});
+    controller.Push(ui::StartRecording{});
+    WaitFor(controller, [](const auto& now) {
+      return now.recording && now.countdown_s <= 0 && now.recording_samples > 3;
+    });
+    controller.Push(ui::DiscardRecording{});
+    const ui::StudioSnapshot s = WaitFor(controller, [](const auto& now) {
+      return !now.recording && now.teacher_discarded_takes > 0;
+    });
+    EXPECT_EQ(s.teacher_discarded_takes, 1);
+    EXPECT_GT(s.teacher_discarded_seconds, 0.3);
+    EXPECT_GT(s.teacher_countdown_seconds, 0.0);
+    EXPECT_NEAR(s.teacher_seconds,
+                s.teacher_demo_seconds + s.teacher_discarded_seconds + s.teacher_countdown_seconds +
+                    s.teacher_play_seconds + s.teacher_placement_seconds,
+                1e-6);
+    EXPECT_TRUE(s.episodes.empty());
+  }
+  StudioController reopened(options);
+  const ui::StudioSnapshot s =
+      WaitFor(reopened, [](const auto& now) { return !now.session_dir.empty(); });
+  EXPECT_EQ(s.teleop, ui::TeleopMode::kKeyboard);
+  EXPECT_EQ(s.teacher_discarded_takes, 1);
+}
+
 // The simulated cell's beacon stands beside the plate: marking another object with it is
 // refused by name (a real cell accepts any object: the beacon reports where it is stuck).
 TEST_F(StudioControllerTest, TheSimulatedBeaconCannotMarkAnotherObject) {

@@ -30,7 +30,35 @@ TEST(ManifestTest, RoundTripsEveryField) {
   m.beacon_noise_sigma = 0.02;
   m.episode_flags["demo_2"] = {true, "valid", "dropped the toast"};
   m.beacon_assignments["red"] = "bowl";
+  m.discarded_takes = 11;
+  m.discarded_seconds = 201.5;
+  m.countdown_seconds = 45;
+  m.teleop = "keyboard";
   EXPECT_EQ(ManifestFromJson(ManifestToJson(m), "x"), m);
+}
+
+// The teacher's time that no kept take shows, and the teleop chosen last: absent in a session
+// from before them (read as none), refused by name when wrong.
+TEST(ManifestTest, TheLedgersUnkeptTimeAndTheTeleopAreOptionalAndChecked) {
+  json j = Valid();
+  for (const char* field :
+       {"discarded_takes", "discarded_seconds", "countdown_seconds", "teleop"}) {
+    j["ledger"].erase(field);
+  }
+  const SessionManifest old = ManifestFromJson(j.dump(), "x");
+  EXPECT_EQ(old.discarded_takes, 0);
+  EXPECT_EQ(old.discarded_seconds, 0.0);
+  EXPECT_EQ(old.countdown_seconds, 0.0);
+  EXPECT_EQ(old.teleop, "");
+  j = Valid();
+  j["ledger"]["discarded_seconds"] = -3;
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'ledger.discarded_seconds' must be a number"));
+  j = Valid();
+  j["ledger"]["discarded_takes"] = -1;
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("ledger.discarded_takes"));
+  j = Valid();
+  j["ledger"]["teleop"] = "joystick";
+  EXPECT_THAT(ErrorOf(j.dump()), HasSubstr("field 'ledger.teleop' must be"));
 }
 
 TEST(ManifestTest, MissingAndMistypedFieldsAreNamed) {

@@ -334,9 +334,13 @@ void DrawRecordScreen(const ScreenContext& context) {
   ImGui::PushTextWrapPos(start_x + left_width);
   DrawTeleopChoice(context);
   // The parts, so 4.6 s before the first take reads as what it is (placing the beacons).
-  ImGui::Text("Teacher's time so far: %.1f s", s.teacher_seconds);
-  ImGui::TextDisabled("demonstrations %.1f s, play %.1f s, placing beacons %.1f s",
-                      s.teacher_demo_seconds, s.teacher_play_seconds, s.teacher_placement_seconds);
+  ImGui::Text("Teacher's time so far: %.1f s (kept takes %.1f s)", s.teacher_seconds,
+              s.teacher_demo_seconds);
+  // Not kept: the takes discarded or recorded over, and the countdowns before a person's takes.
+  ImGui::TextDisabled("unkept %.1f s (%d takes, countdowns), play %.1f s, beacons %.1f s",
+                      s.teacher_discarded_seconds + s.teacher_countdown_seconds,
+                      s.teacher_discarded_takes, s.teacher_play_seconds,
+                      s.teacher_placement_seconds);
   ImGui::PopTextWrapPos();
   ImGui::EndGroup();
   // The right side starts at one place whatever the left side shows (a teleop chosen, a take).

@@ -361,7 +361,10 @@ struct StudioSnapshot {
   std::vector<EpisodeView> episodes;
   /// Said when the good demonstrations come from more than one teleop (teach::TeacherMixWarning).
   std::string teacher_mix_warning;
-  double teacher_seconds = 0;  ///< demonstrations + play + beacon placements so far
+  /// Everything the teacher spent so far: kept and discarded takes, countdowns, play, beacons.
+  double teacher_seconds = 0;
+  double teacher_discarded_seconds = 0, teacher_countdown_seconds = 0;
+  int teacher_discarded_takes = 0;
   /// Its parts (the session's teaching ledger): a beacon's placement counts before any take.
   double teacher_demo_seconds = 0, teacher_play_seconds = 0, teacher_placement_seconds = 0;
 
