@@ -93,6 +93,11 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
     if (flags.teacher == "person" && config.world != "tabletop") {
       throw UserError("--teacher person teaches from the camera only (--observation image)");
     }
+    if (flags.teacher == "person" && config.demo_noise > 0) {
+      throw UserError(
+          "--demo-noise: the simulated person's takes carry no injected noise (its "
+          "own imprecision is the point); drop --demo-noise or use --teacher expert");
+    }
     config.teacher = flags.teacher;
   }
   config.demos = flags.demos;

@@ -306,11 +306,11 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
     take_starts_ += std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(options_.countdown_s));
   }
-  // A person's take ends where a person ends it: the goal holds and the gripper is clear.
   // A person's countdown is the teacher's time too (the ledger counts it).
   if (teleop_mode_ != ui::TeleopMode::kScripted && options_.countdown_s > 0) {
     session_->AddUnkeptTime(0, 0.0, options_.countdown_s);
   }
+  // A person's take ends where a person ends it: the goal holds and the gripper is clear.
   recorder_ = std::make_unique<teach::DemoRecorder>(*world_, MakeTeacher(), TeleopSource(),
                                                     teleop_mode_ == ui::TeleopMode::kScripted
                                                         ? teach::DemoRecorder::TakeEnd::kScripted

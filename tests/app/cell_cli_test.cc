@@ -276,6 +276,13 @@ TEST(CellCliTest, AnUnknownTeacherIsRefusedListingTheValidOnes) {
   EXPECT_THAT(r.output, HasSubstr("--teacher person"));
   EXPECT_FALSE(fs::exists(out / "b"));
   r = RunRecon(
+      "experiment tabletop --runs 1 --tests 1 --teacher person --demo-noise 0.05 "
+      "--plan-only --out " +
+      (out / "d").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--demo-noise: the simulated person's takes"));
+  EXPECT_FALSE(fs::exists(out / "d"));
+  r = RunRecon(
       "experiment tabletop --runs 1 --tests 1 --teacher person --keep-pauses "
       "--plan-only --out " +
       (out / "c").string());

@@ -158,14 +158,14 @@ TEST_F(StudioControllerTest, ATapMovesAStepAndTheWristTurns) {
   controller.Push(lower);
   controller.Push(ui::TeleopInput{});
   s = WaitFor(
-      controller, [&](const auto& now) { return now.grip_m[2] < start_z - 0.002f; }, 10);
+      controller, [&](const auto& now) { return now.grip_m[2] < start_z - 0.001f; }, 10);
   // Let the servo settle, then measure the step.
   const int after = s.recording_samples + 5;
   s = WaitFor(
       controller, [&](const auto& now) { return now.recording_samples >= after; }, 10);
   const float step_m = start_z - s.grip_m[2];
-  EXPECT_GT(step_m, 0.003f);
-  EXPECT_LT(step_m, 0.008f) << "a tap is a small step, not a centimetre or two";
+  EXPECT_GT(step_m, 0.0015f);
+  EXPECT_LT(step_m, 0.006f) << "a tap is a small step, not a centimetre or two";
 
   EXPECT_NEAR(s.grip.wrist_turn_deg, 0.0f, 1.0f);
   const std::array<float, 4> jaw_before = s.teacher_view.jaw_pixels;

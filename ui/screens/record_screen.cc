@@ -78,7 +78,7 @@ void DrawMappings(const StudioSnapshot& s) {
       s.teacher_view.available ? "as the 3-D view shows it" : "as the camera shows it";
   if (!ImGui::BeginTable("mappings", 2, ImGuiTableFlags_SizingFixedFit)) return;
   if (s.teleop == TeleopMode::kKeyboard) {
-    LegendRow("Arrows", Format("move the arm %s (a tap: 5 mm)", seen).c_str());
+    LegendRow("Arrows", Format("move the arm %s (a tap: 3 mm)", seen).c_str());
     LegendRow("Page Up / Down", "raise / lower it (held: faster)");
     LegendRow("Home / End", "turn the wrist (cyan: the jaw's axis)");
     LegendRow("Space", "close / open the gripper");
