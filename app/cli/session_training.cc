@@ -217,14 +217,19 @@ store::TrainingRecord TrainSessionMethod(
   return record;
 }
 
-int SessionRolloutSteps(const store::Session& session, const worlds::World& world,
-                        std::string* note) {
-  // The kept demonstrations a model learns from: a slow teacher's policy is as slow.
+std::vector<int64_t> KeptDemoLengths(const store::Session& session) {
   std::vector<int64_t> lengths;
   for (const store::EpisodeEntry& e : session.demos()) {
     if (e.problem.empty() && !e.flags.bad) lengths.push_back(e.meta.num_samples);
   }
-  return experiments::RolloutSteps(world, lengths, experiments::kRolloutFactor, note);
+  return lengths;
+}
+
+int SessionRolloutSteps(const store::Session& session, const worlds::World& world,
+                        std::string* note) {
+  // The kept demonstrations a model learns from: a slow teacher's policy is as slow.
+  return experiments::RolloutSteps(world, KeptDemoLengths(session), experiments::kRolloutFactor,
+                                   note);
 }
 
 store::RolloutSummary EvaluateSessionMethod(const store::Session& session,

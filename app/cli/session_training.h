@@ -64,6 +64,9 @@ store::TrainingRecord TrainSessionMethod(
     const std::function<void(const TrainingProgress&)>& on_progress = {},
     const std::atomic<bool>* cancel = nullptr);
 
+/// The sample counts of the session's kept demonstrations (neither bad nor damaged), in order.
+std::vector<int64_t> KeptDemoLengths(const store::Session& session);
+
 /// How many steps the session's rollouts run: the world's episode, or 1.5 times its longest kept
 /// demonstration (experiments::RolloutSteps), which a person's slow takes ask for. `note` says
 /// when the takes asked for more than the most a rollout is given.

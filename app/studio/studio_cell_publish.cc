@@ -96,10 +96,8 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   if (world_) {
     const int steps = cli::SessionRolloutSteps(*session_, *world_, &s.rollout_limit_note);
     s.rollout_limit_s = steps * world_->StepSeconds();
-    for (const store::EpisodeEntry& e : session_->demos()) {
-      if (e.problem.empty() && !e.flags.bad) {
-        s.longest_take_s = std::max(s.longest_take_s, e.meta.num_samples * world_->StepSeconds());
-      }
+    for (const int64_t samples : cli::KeptDemoLengths(*session_)) {
+      s.longest_take_s = std::max(s.longest_take_s, samples * world_->StepSeconds());
     }
   }
   ShowPlayback(s);

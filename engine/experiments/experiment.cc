@@ -245,7 +245,7 @@ RunResult RunOne(const ExperimentConfig& config, const ExperimentUnit& task,
   const WorldMaker make_test_world = [&] {
     return worlds::MakeWorld(config.world, "none", 0.0, config.authors_compat, config.cell);
   };
-  const int rollout_steps = RolloutSteps(*world, demo_lengths, config.rollout_factor);
+  const int rollout_steps = RolloutSteps(*world, demo_lengths);
   const std::vector<ScenarioOutcome> outcomes =
       EvaluatePolicy(make_test_world, policy, test_seeds, false, {}, nullptr, rollout_steps);
   result.metric = Mean(Metrics(outcomes));

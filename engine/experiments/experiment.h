@@ -44,9 +44,6 @@ struct ExperimentConfig {
   /// tabletop's simulated person at the keyboard, teach::SimulatedPerson: human-paced takes
   /// with pauses, overshoot and missed grasps, a failed take recorded again).
   std::string teacher = "expert";
-  /// Rollouts run max(the world's episode, rollout_factor x the longest demonstration) steps,
-  /// at most kMaxRolloutFactor x the world's episode (RolloutSteps).
-  double rollout_factor = 1.5;  // experiments::kRolloutFactor (evaluation.h)
   /// When not empty, the demonstrations' pauses are left out of training, both methods alike
   /// (WithoutPauses, engine/core/pauses.h), with these action entries as motion
   /// (WorldRecipe::pause_motion); empty: every sample is trained on.

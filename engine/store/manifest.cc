@@ -168,14 +168,16 @@ SessionManifest ManifestFromJson(const std::string& text, const std::string& sou
   if (ledger.Has("discarded_takes")) {
     m.discarded_takes = static_cast<int>(ledger.NonNegativeInteger("discarded_takes"));
   }
-  m.discarded_seconds = ledger.OptionalNumber("discarded_seconds", 0.0);
-  m.countdown_seconds = ledger.OptionalNumber("countdown_seconds", 0.0);
-  for (const char* field : {"discarded_seconds", "countdown_seconds"}) {
+  // Each read once, then checked: seconds, never negative.
+  const auto seconds = [&](const char* field) {
     const double v = ledger.OptionalNumber(field, 0.0);
     if (!(v >= 0) || !std::isfinite(v)) {
       ledger.Fail(ledger.Name(field), "must be a number of seconds >= 0");
     }
-  }
+    return v;
+  };
+  m.discarded_seconds = seconds("discarded_seconds");
+  m.countdown_seconds = seconds("countdown_seconds");
   m.teleop = ledger.OptionalString("teleop", "");
   if (!m.teleop.empty() && m.teleop != "scripted" && m.teleop != "keyboard" &&
       m.teleop != "gamepad") {

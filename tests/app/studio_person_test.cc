@@ -23,6 +23,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The steps before Record, as a teacher clicks them: mark the plate, calibrate, choose the
+// keyboard.
+void ReachRecordWithTheKeyboard(ui::UiDriver& driver) {
+  driver.RunScript(R"(wait 3
+click Beacons##step
+click object:plate
+wait-idle 60
+click Calibrate##step
+click Collect points and fit
+wait-idle 300
+click Record##step
+click [ ] Keyboard##teleop)",
+                   "setup");
+}
+
 // Ten keyboard takes in a new session of the wide layout, where every take is a new scene (the
 // plate anywhere along either edge, the bowl anywhere else): each one must put the toast on the
 // plate at its first try. Prints how long each take took.
@@ -38,17 +53,7 @@ TEST(StudioPersonTest, APersonWhoOnlySeesTheScreenTeachesTenNewScenesAtTheFirstT
   options.real_time = false;  // the calibration runs fast; a person's takes are paced anyway
   HeadlessStudio studio(options);
   ui::UiDriver& driver = studio.driver();
-  // The steps before Record, as a teacher clicks them.
-  driver.RunScript(R"(wait 3
-click Beacons##step
-click object:plate
-wait-idle 60
-click Calibrate##step
-click Collect points and fit
-wait-idle 300
-click Record##step
-click [ ] Keyboard##teleop)",
-                   "setup");
+  ReachRecordWithTheKeyboard(driver);
 
   constexpr int kTakes = 10;
   int first_try = 0;
@@ -101,16 +106,7 @@ TEST(StudioPersonTest, ARealisticPersonGetsATakeDoneThroughTheScreens) {
   options.real_time = false;
   HeadlessStudio studio(options);
   ui::UiDriver& driver = studio.driver();
-  driver.RunScript(R"(wait 3
-click Beacons##step
-click object:plate
-wait-idle 60
-click Calibrate##step
-click Collect points and fit
-wait-idle 300
-click Record##step
-click [ ] Keyboard##teleop)",
-                   "setup");
+  ReachRecordWithTheKeyboard(driver);
   const ui::UiDriver::PersonTakesResult r = driver.PersonTakes(kDemonstrations, kSeed, kMaxTries);
   std::printf("%d demonstrations in %d tries, %d grasp attempts; %.1f s kept, %.1f s recorded\n",
               r.kept, r.tries, r.grasp_attempts, r.kept_seconds, r.total_seconds);
