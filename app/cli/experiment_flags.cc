@@ -111,8 +111,8 @@ experiments::ExperimentConfig ToConfig(const ExperimentFlags& flags, const CLI::
   // --authors-recipe changes the starting point; options typed explicitly still win over it.
   const auto use = [&](const char* option) { return !flags.authors_recipe || given(option); };
   // The world's recipe (recipe.h) for what the user did not set explicitly.
-  const experiments::WorldRecipe recipe =
-      experiments::RecipeForWorld(config.world, worlds::WorldNeedsRenderer(config.world));
+  const experiments::WorldRecipe recipe = experiments::RecipeForWorld(
+      config.world, worlds::WorldNeedsRenderer(config.world), flags.teacher == "person");
   if (!flags.keep_pauses) config.pause_motion = recipe.pause_motion;
   if (flags.authors_recipe) {
     config.train = learn::AuthorsRecipe();

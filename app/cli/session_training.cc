@@ -24,6 +24,8 @@
 #include "engine/experiments/evaluation.h"
 #include "engine/experiments/recipe.h"
 #include "engine/store/rollout_replay.h"
+#include "engine/teach/slow_takes.h"
+#include "engine/teach/teacher_mix.h"
 
 namespace recon::cli {
 
@@ -88,7 +90,7 @@ std::vector<bool> TakenByAPerson(const store::Session& session,
   std::vector<bool> person;
   for (const std::string& name : names) {
     if (name.rfind("demo_", 0) != 0) continue;  // play chunks are not demonstrations
-    person.push_back(session.Find(name).meta.source != "scripted-teleop");
+    person.push_back(teach::IsAPersonsTake(session.Find(name).meta.source));
   }
   return person;
 }
@@ -118,10 +120,13 @@ store::TrainingRecord TrainSessionMethod(
   options.include_play = false;
   Dataset valid = session.LoadDataset(options);
 
-  experiments::WorldRecipe recipe = experiments::RecipeForWorld(m.world, m.y_encoding == "uint8");
+  // The recipe for a person's takes when most of the demonstrations trained on are a person's.
+  const std::vector<bool> persons = TakenByAPerson(session, trained_on);
+  experiments::WorldRecipe recipe = experiments::RecipeForWorld(
+      m.world, m.y_encoding == "uint8", teach::MostlyAPersonsTakes(persons));
   // A person's pauses are left out where the recipe says so (pauses.h), from both splits.
   if (!flags.keep_pauses && !recipe.pause_motion.empty()) {
-    data = WithoutPauses(data, recipe.pause_motion, nullptr, TakenByAPerson(session, trained_on));
+    data = WithoutPauses(data, recipe.pause_motion, nullptr, persons);
     options.split = store::Split::kValid;
     valid = WithoutPauses(valid, recipe.pause_motion, nullptr,
                           TakenByAPerson(session, session.DatasetEpisodeNames(options)));
@@ -217,12 +222,28 @@ store::TrainingRecord TrainSessionMethod(
   return record;
 }
 
+namespace {
+
+/// The session's kept demonstrations (neither bad nor damaged), in order.
+std::vector<teach::KeptTake> KeptTakes(const store::Session& session) {
+  std::vector<teach::KeptTake> takes;
+  for (const store::EpisodeEntry& e : session.demos()) {
+    if (e.problem.empty() && !e.flags.bad) takes.push_back({e.name, e.meta.num_samples});
+  }
+  return takes;
+}
+
+}  // namespace
+
 std::vector<int64_t> KeptDemoLengths(const store::Session& session) {
   std::vector<int64_t> lengths;
-  for (const store::EpisodeEntry& e : session.demos()) {
-    if (e.problem.empty() && !e.flags.bad) lengths.push_back(e.meta.num_samples);
-  }
+  for (const teach::KeptTake& take : KeptTakes(session)) lengths.push_back(take.samples);
   return lengths;
+}
+
+std::string SlowTakesWarningOf(const store::Session& session) {
+  const double step_s = session.manifest().step_seconds;
+  return teach::SlowTakesWarning(KeptTakes(session), step_s > 0 ? step_s : 1.0);
 }
 
 int SessionRolloutSteps(const store::Session& session, const worlds::World& world,

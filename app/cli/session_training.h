@@ -67,6 +67,10 @@ store::TrainingRecord TrainSessionMethod(
 /// The sample counts of the session's kept demonstrations (neither bad nor damaged), in order.
 std::vector<int64_t> KeptDemoLengths(const store::Session& session);
 
+/// What to tell the teacher of the session's slow kept takes before training
+/// (teach::SlowTakesWarning), or "".
+std::string SlowTakesWarningOf(const store::Session& session);
+
 /// How many steps the session's rollouts run: the world's episode, or 1.5 times its longest kept
 /// demonstration (experiments::RolloutSteps), which a person's slow takes ask for. `note` says
 /// when the takes asked for more than the most a rollout is given.

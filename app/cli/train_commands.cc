@@ -79,6 +79,9 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
   std::printf("recon train: session %s (%s), methods %s, training seed %llu\n",
               flags.session.c_str(), session.manifest().world.c_str(), names.c_str(),
               static_cast<unsigned long long>(options.seed));
+  if (const std::string slow = SlowTakesWarningOf(session); !slow.empty()) {
+    std::printf("note: %s\n", slow.c_str());
+  }
   std::fflush(stdout);
   // Each trainer runs on one core (learner.h) and its result does not depend on what else runs,
   // so the methods train side by side, as in the studio: on 2 cores both take the slower one's

@@ -16,7 +16,8 @@ namespace recon::experiments {
 ///   losses and would retrain every run five times;
 /// - camera images stored as 0-255 (`images_are_bytes`) are scaled to 0-1 before the CNN (the
 ///   authors' raw 0-255 was for their 32 x 32 Dynamic 2D drawings, which keep it);
-/// - the tabletop predicts chunks of 10 actions, ensembled over steps (ACT), with a (512, 512)
+/// - the tabletop predicts chunks of 10 actions (20 from a person's takes), ensembled over steps
+///   (ACT), with a (512, 512)
 ///   policy trained at a learning rate of 1e-3, 7,500 steps from the camera and 15,000 on the
 ///   true positions (train.steps, train.learning_rate: what `recon experiment`, `recon train`
 ///   and the studio use unless told otherwise).
@@ -32,6 +33,9 @@ struct WorldRecipe {
   /// empty: every sample is trained on.
   std::vector<float> pause_motion;
 };
-WorldRecipe RecipeForWorld(const std::string& world, bool images_are_bytes);
+/// `persons_takes`: the demonstrations are a person's (the keyboard, a gamepad, the simulated
+/// person), not the scripted teacher's; the tabletop's recipe then predicts longer chunks.
+WorldRecipe RecipeForWorld(const std::string& world, bool images_are_bytes,
+                           bool persons_takes = false);
 
 }  // namespace recon::experiments

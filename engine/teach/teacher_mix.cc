@@ -1,5 +1,7 @@
 #include "engine/teach/teacher_mix.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <map>
 
 namespace recon::teach {
@@ -27,6 +29,13 @@ std::string TeacherMixWarning(const std::vector<std::string>& sources) {
   return "The demonstrations come from " + std::to_string(counts.size()) + " teachers (" + parts +
          "): a policy learns best from one teacher's style. Mark the others Bad or re-record "
          "them with one teleop.";
+}
+
+bool IsAPersonsTake(const std::string& source) { return source != "scripted-teleop"; }
+
+bool MostlyAPersonsTakes(const std::vector<bool>& person) {
+  const auto persons = std::count(person.begin(), person.end(), true);
+  return 2 * persons > static_cast<std::ptrdiff_t>(person.size());
 }
 
 }  // namespace recon::teach

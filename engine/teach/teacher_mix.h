@@ -13,4 +13,12 @@ namespace recon::teach {
 /// points of success (docs/studio.md).
 std::string TeacherMixWarning(const std::vector<std::string>& sources);
 
+/// Whether a demonstration from `source` was given by a person (the keyboard, a gamepad, a real
+/// cell's teleop): everything but the scripted teacher. A person's pauses are left out of
+/// training, and most takes by a person get the recipe for a person's takes.
+bool IsAPersonsTake(const std::string& source);
+
+/// Whether more than half of `person` (per demonstration: a person's take) are a person's.
+bool MostlyAPersonsTakes(const std::vector<bool>& person);
+
 }  // namespace recon::teach

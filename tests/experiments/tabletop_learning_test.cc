@@ -14,10 +14,12 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "engine/experiments/evaluation.h"
 #include "engine/experiments/recipe.h"
+#include "engine/learn/config_json.h"
 #include "engine/learn/learner.h"
 #include "engine/worlds/world.h"
 #include "engine/worlds/world_factory.h"
@@ -29,6 +31,25 @@ std::unique_ptr<worlds::World> WideStateWorld() {
   worlds::CellResources cell;
   cell.layout = "wide";
   return worlds::MakeWorld("tabletop-state", "none", 0.0, false, cell);
+}
+
+// A person's takes get longer chunks; everything else in the recipe, and so what the Baseline and
+// RECON each get, is the same for both teachers.
+TEST(TabletopLearningTest, APersonsTakesArePredictedInLongerChunksAndNothingElseChanges) {
+  for (const char* world : {"tabletop", "tabletop-state"}) {
+    const bool bytes = std::string(world) == "tabletop";
+    const WorldRecipe scripted = RecipeForWorld(world, bytes, false);
+    const WorldRecipe person = RecipeForWorld(world, bytes, true);
+    EXPECT_GT(person.network.action_chunk, scripted.network.action_chunk) << world;
+    learn::NetworkConfig same = person.network;
+    same.action_chunk = scripted.network.action_chunk;
+    EXPECT_EQ(learn::ToJson(same), learn::ToJson(scripted.network)) << world;
+    EXPECT_EQ(learn::ToJson(person.train), learn::ToJson(scripted.train)) << world;
+    EXPECT_EQ(person.pause_motion, scripted.pause_motion) << world;
+  }
+  // The 2-D worlds have no person.
+  EXPECT_EQ(RecipeForWorld("dynamic2d", false, true).network.action_chunk,
+            RecipeForWorld("dynamic2d", false, false).network.action_chunk);
 }
 
 TEST(TabletopLearningTest, APolicyTrainedOnTwoDemonstrationsRepeatsThem) {

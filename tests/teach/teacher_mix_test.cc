@@ -19,5 +19,19 @@ TEST(TeacherMixTest, OneTeacherSaysNothingTwoAreNamedAndCounted) {
   EXPECT_NE(mixed.find("Bad"), std::string::npos) << "it says what to do";
 }
 
+TEST(TeacherMixTest, EveryTeleopButTheScriptedTeachersIsAPerson) {
+  EXPECT_FALSE(IsAPersonsTake("scripted-teleop"));
+  for (const char* source : {"keyboard-teleop", "gamepad-teleop", "real-teleop", ""}) {
+    EXPECT_TRUE(IsAPersonsTake(source)) << source;
+  }
+}
+
+TEST(TeacherMixTest, MostTakesByAPersonMeansMoreThanHalf) {
+  EXPECT_TRUE(MostlyAPersonsTakes({true, true, false}));
+  EXPECT_FALSE(MostlyAPersonsTakes({true, false}));
+  EXPECT_FALSE(MostlyAPersonsTakes({false, false, true}));
+  EXPECT_FALSE(MostlyAPersonsTakes({}));
+}
+
 }  // namespace
 }  // namespace recon::teach

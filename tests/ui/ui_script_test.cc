@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -242,6 +244,32 @@ TEST(UiScriptTest, KeyNamesAcceptTheUsualSynonymsInAnyCase) {
   ASSERT_EQ(steps.size(), 2u);
   EXPECT_EQ(steps[0].key, ImGuiKey_Enter);
   EXPECT_EQ(steps[1].key, ImGuiKey_PageDown);
+}
+
+// The scripts the project ships (scripts/demo, scripts/person-sessions) parse whole, and the
+// person's session asks for 4 kept takes, which scripts/person-sessions rewrites per seed.
+TEST(UiScriptTest, TheShippedStudioScriptsParse) {
+  const std::filesystem::path dir = std::filesystem::path(RECON_SOURCE_DIR) / "assets/studio";
+  int scripts = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".script") continue;
+    ++scripts;
+    std::ifstream in(entry.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<ScriptStep> steps;
+    EXPECT_NO_THROW(steps = ParseUiScript(text, entry.path().string())) << entry.path();
+    if (entry.path().filename() == "person_session.script") {
+      int person_takes = 0;
+      for (const ScriptStep& step : steps) {
+        if (step.verb != ScriptStep::Verb::kPersonTakes) continue;
+        ++person_takes;
+        EXPECT_EQ(step.frames, 4);
+        EXPECT_EQ(step.seed, 1u);
+      }
+      EXPECT_EQ(person_takes, 1);
+    }
+  }
+  EXPECT_GE(scripts, 2);
 }
 
 }  // namespace
