@@ -59,6 +59,8 @@ std::unique_ptr<recon::ui::DesktopWindow> OpenDesktopWindow(const StudioFlags& f
                         ? std::string("RECON Studio")
                         : "RECON Studio - " + flags.options.session_dir;
     options.renderer = {flags.width, flags.height, 16.0f, flags.ui_scale};
+    options.min_width = recon::ui::kMinWindowWidth;
+    options.min_height = recon::ui::kMinWindowHeight;
     options.ui_scale_from_screen = !(flags.ui_scale > 0);
     options.min_ui_scale = static_cast<float>(recon::cli::kMinUiScale);
     options.max_ui_scale = static_cast<float>(recon::cli::kMaxUiScale);
@@ -101,18 +103,31 @@ void Run(StudioFlags flags) {
   recon::ui::CommandQueue commands;
   recon::ui::StudioSnapshot snapshot;
   bool quit = false;  // Session > Quit: the window closes as with its close button
+  // The close button pressed while something runs: the screens ask before anything is stopped.
+  bool close_asked = false;
   const auto draw = [&] {
     snapshot = controller.Snapshot();
+    if (close_asked && snapshot.busy_with.empty()) quit = true;  // it ended meanwhile: close
+    snapshot.close_requested = close_asked && !quit;
     recon::ui::DrawStudio(snapshot, commands, textures);
     for (recon::ui::StudioCommand& command : commands.Drain()) {
       if (std::holds_alternative<recon::ui::Quit>(command)) {
         quit = true;
+      } else if (const auto* answer = std::get_if<recon::ui::AnswerClose>(&command)) {
+        // Stopping is the controller's closing: a training's note stays in the session.
+        quit = answer->close;
+        close_asked = false;
       } else {
         controller.Push(std::move(command));
       }
     }
   };
   if (desktop != nullptr) {
+    desktop->SetCloseGuard([&] {
+      if (controller.Snapshot().busy_with.empty()) return true;
+      close_asked = true;
+      return false;
+    });
     const auto frame = [&] {
       // Widgets note where they were drawn (for scripted clicks): forget the last frame's.
       recon::ui::WidgetRegistry::ForThisThread().BeginFrame();

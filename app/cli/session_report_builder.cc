@@ -217,7 +217,8 @@ void AddLedger(const json& ledger, report::SessionReport& r) {
   char unkept[320];
   std::snprintf(unkept, sizeof(unkept),
                 " In all the teacher spent %.1f s: the table counts kept takes only; %.1f s went "
-                "into %d takes discarded or recorded over and %.1f s into countdowns.",
+                "into %d takes discarded or recorded over and %.1f s into countdowns (and the "
+                "arm's way home when longer).",
                 ledger["teacher_total_s"].get<double>(), ledger["discarded_s"].get<double>(),
                 ledger["discarded_takes"].get<int>(), ledger["countdowns_s"].get<double>());
   r.ledger_note = ledger["note"].get<std::string>() +

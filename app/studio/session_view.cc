@@ -6,7 +6,9 @@
 
 #include "app/cli/result_staleness.h"
 #include "app/cli/session_summary.h"
+#include "app/cli/session_training.h"
 #include "app/studio/probe_view.h"
+#include "app/studio/training_mark.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/rollout_summary.h"
@@ -102,12 +104,22 @@ ui::TrainingView SavedTrainingView(const cli::CheckedResult<store::TrainingRecor
 
 }  // namespace
 
-void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s) {
+void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s, int suggested_demos) {
   s.steps = teach::EvaluateWorkflow(facts);
   for (int i = 0; i < teach::kNumSteps; ++i) {
     s.can_open[i] = teach::CanOpen(facts, teach::kAllSteps[i]);
   }
   s.next_step = teach::NextStep(facts);
+  const auto index = [](teach::Step step) { return static_cast<int>(step); };
+  const teach::StepStatus& record = s.steps[index(teach::Step::kRecord)];
+  const bool record_open = record.state != teach::StepState::kBlocked;
+  const bool busy = s.steps[index(s.next_step)].state == teach::StepState::kBusy;
+  if (record_open && !busy && facts.demos < suggested_demos &&
+      index(s.next_step) > index(teach::Step::kRecord)) {
+    s.next_step = teach::Step::kRecord;
+    s.steps[index(teach::Step::kRecord)].summary +=
+        "; " + std::to_string(suggested_demos) + " suggested before training";
+  }
 }
 
 ui::StudioSnapshot BuildSessionView(const store::Session& session,
@@ -116,6 +128,8 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   ui::StudioSnapshot s;
   s.session_open = true;
   s.session_dir = session.dir();
+  // While a training runs its note is there and says nothing: only one left behind was cut short.
+  if (!inputs.training) s.training_cut_short = TrainingCutShort(session.dir());
   s.world = m.world;
   s.cell_kind = m.cell;
   s.studio_cell = inputs.studio_cell;
@@ -140,7 +154,8 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
   const cli::SessionResults results = cli::ReadSessionResults(session);
   const std::string report = session.ReportPath();
   const bool report_written = fs::exists(report);
-  ShowWorkflow(Facts(session, inputs, calibration, results, report_written), s);
+  ShowWorkflow(Facts(session, inputs, calibration, results, report_written), s,
+               inputs.suggested_demos);
   s.calibration = CalibrationView(calibration);
   s.calibration.points_target = inputs.calibration_points;
   std::vector<std::string> sources;  // of the demonstrations training will use
@@ -150,6 +165,7 @@ ui::StudioSnapshot BuildSessionView(const store::Session& session,
     if (!e.flags.bad && e.problem.empty()) sources.push_back(e.meta.source);
   }
   s.teacher_mix_warning = teach::TeacherMixWarning(sources);
+  s.slow_takes_warning = cli::SlowTakesWarningOf(session);
   s.play_samples = static_cast<int>(session.PlaySamples());
   // A report written before (by the studio or `recon report`) can be opened too.
   if (report_written) s.report_path = report;

@@ -19,10 +19,15 @@ struct SessionViewInputs {
   /// nothing here (WorkflowFacts::taught_elsewhere).
   std::string studio_cell = "simulated";
   std::string probe_object;  ///< whose heat maps the probe panel shows (ShowProbeObject)
+  /// The demonstrations the world's protocol asks for before training (World::SuggestedDemos).
+  int suggested_demos = 1;
 };
 
 /// The workflow of `facts` into `s`: each step's state, which steps can open, the next one.
-void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s);
+/// The next step stays Record until `suggested_demos` demonstrations are kept (Train is open
+/// from the first, as the workflow says, but the docs' advice is the one marked next).
+void ShowWorkflow(const teach::WorkflowFacts& facts, ui::StudioSnapshot& s,
+                  int suggested_demos = 1);
 
 /// The session's side of the snapshot: devices and teleops, workflow, calibration, episodes,
 /// play samples, teaching time and rollouts. Reads the calibration and the rollout files, so the

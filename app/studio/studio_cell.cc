@@ -5,6 +5,7 @@
 
 #include "app/studio/real_cell_source.h"
 #include "app/studio/simulated_cell_source.h"
+#include "app/studio/training_mark.h"
 #include "app/studio/trial_run.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
@@ -136,6 +137,9 @@ void StudioCell::OpenSessionAt(const std::string& dir) {
   if (std::string problem = recent_.Add(session_->dir()); !problem.empty()) AddError(problem);
   status_ = std::string(exists ? "Opened" : "Created") + " session " + session_->dir() + ": " +
             session_->manifest().world + ", " + session_->manifest().cell + " cell.";
+  if (!TrainingCutShort(session_->dir()).empty()) {
+    status_ += " Its last training was cut short when the studio closed (see Train).";
+  }
 }
 
 void StudioCell::Handle(const ui::StudioCommand& command) {
@@ -238,6 +242,10 @@ double StudioCell::Seconds(Clock::time_point t) const {
 
 void StudioCell::ApplyFinishedJob() {
   const JobState job = jobs_.Take();
+  // A training that ended here, whatever its end, was not cut short by the studio closing.
+  if (job.kind == JobKind::kTraining && (job.finish || !job.error.empty()) && session_) {
+    NoteTrainingEnded(session_->dir());
+  }
   if (job.finish) job.finish();
   if (!job.error.empty()) AddError(job.error);
   if (job.finish || !job.error.empty()) Changed();
@@ -318,6 +326,7 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   teach::StartSessionTake(*recorder_, *world_, session_->manifest(), number, seed);
   // A simulated scene puts the arm at home itself; a real arm is where the last take left it.
   homing_take_ = teleop_mode_ != ui::TeleopMode::kScripted;
+  take_homing_moved_ = false;
   take_homing_since_ = next_homing_ = Clock::now();
 }
 
@@ -345,8 +354,14 @@ void StudioCell::StepTakeHoming(Clock::time_point now) {
     if (StepTowardHome(arm->State().position_rad, take_homing_since_, now)) {
       homing_take_ = false;
       arm->Stop();
+      // The teacher waits for the arm to get home: beyond the countdown, that is their time too.
+      const double homing_s = std::chrono::duration<double>(now - take_homing_since_).count();
+      if (take_homing_moved_ && homing_s > options_.countdown_s) {
+        session_->AddUnkeptTime(0, 0.0, homing_s - options_.countdown_s);
+      }
       return;
     }
+    take_homing_moved_ = true;
     next_homing_ = now + kControlPeriod;
   } catch (const UserError& e) {
     homing_take_ = false;

@@ -167,7 +167,8 @@ class StudioCell {
   void Apply(const ui::CancelRollouts& c);
   void Apply(const ui::UndoDelete& c);
   void Apply(const ui::OpenReport& c);
-  void Apply(const ui::Quit&) {}  // the application closes the window (studio_main.cc)
+  void Apply(const ui::Quit&) {}         // the application closes the window (studio_main.cc)
+  void Apply(const ui::AnswerClose&) {}  // so is this one
   void Apply(const ui::RunRollouts& c);
   void Apply(const ui::ShowRolloutFrame& c);
   void Apply(const ui::WriteReport& c);
@@ -285,7 +286,8 @@ class StudioCell {
     learn::Policy policy;
   };
   std::map<std::string, SaliencyModel> saliency_models_;
-  bool homing_take_ = false;  ///< a person's take waits for the arm to be home
+  bool homing_take_ = false;        ///< a person's take waits for the arm to be home
+  bool take_homing_moved_ = false;  ///< the arm was not home when the take was started
   Clock::time_point take_homing_since_, next_homing_;
   bool estop_ = false;
   /// Why the take in recorder_ was set aside unfinished (ui::StudioSnapshot::pending_take).

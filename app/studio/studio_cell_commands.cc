@@ -14,6 +14,7 @@
 #include "app/cli/session_training.h"
 #include "app/studio/studio_cell.h"
 #include "app/studio/studio_jobs.h"
+#include "app/studio/training_mark.h"
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 
@@ -268,6 +269,12 @@ void StudioCell::Apply(const ui::StartTraining& c) {
   training = cli::WithRecipeDefaults(*session_, training);
   training.seed = cli::DefaultTrainingSeed(*session_);
   const std::vector<std::string> methods = c.methods;
+  std::vector<std::string> labels;
+  for (const std::string& method : methods) {
+    labels.push_back(method == teach::kBaselineMethod ? "Baseline" : "RECON");
+  }
+  // Until the job ends (ApplyFinishedJob): a studio closed meanwhile leaves the note behind.
+  NoteTrainingStarted(session_->dir(), labels, training.steps);
   jobs_.Start(JobKind::kTraining,
               [this, training, methods](JobThread& jobs) -> std::function<void()> {
                 std::string said = TrainMethods(jobs, *session_, training, methods);

@@ -30,6 +30,9 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   }
   s = session_view_;
   s.current_step = current_step_;
+  if (world_) {
+    s.play_scene_samples = world_->PlaySamplesPerScenario() * world_->DemosPerConfiguration();
+  }
   s.picking_session = picking_session_;
   s.recent_sessions = recent_.Openable();
   RenderView(s);
@@ -118,6 +121,7 @@ void StudioCell::RebuildSessionView() {
   inputs.gamepad = gamepad_.View();
   inputs.studio_cell = source_->Kind();
   inputs.probe_object = probe_object_;
+  inputs.suggested_demos = world_ ? world_->SuggestedDemos() : 1;
   session_view_ = BuildSessionView(*session_, inputs);
 }
 

@@ -66,7 +66,8 @@ struct SessionManifest {
   double seconds_per_beacon_placement = 2.3;
   int placements_per_beacon = 2;
   /// The teacher's time that no kept episode shows: takes discarded or recorded over (their
-  /// recorded seconds), and the countdowns before a person's takes. Absent in older sessions: 0.
+  /// recorded seconds), and the waits before a person's takes (the countdown, or the arm's way
+  /// home when that is longer). Absent in older sessions: 0.
   int discarded_takes = 0;
   double discarded_seconds = 0;
   double countdown_seconds = 0;

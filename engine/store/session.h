@@ -111,7 +111,8 @@ class Session {
   /// Records which object beacon `beacon` is stuck on. UserError for an unknown beacon.
   void AssignBeacon(const std::string& beacon, const std::string& object);
   /// The teaching-time ledger's share that no kept episode shows: a take discarded or recorded
-  /// over (`seconds` recorded), or a countdown before a person's take (`countdown_seconds`).
+  /// over (`seconds` recorded), or a wait before a person's take (`countdown_seconds`: the
+  /// countdown, or the arm's way home beyond it).
   void AddUnkeptTime(int takes, double seconds, double countdown_seconds);
   /// The teleop the teacher chose ("scripted", "keyboard", "gamepad"), kept for the next time the
   /// session is opened.

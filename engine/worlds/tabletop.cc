@@ -27,8 +27,10 @@ constexpr char kCamera[] = "top";
 constexpr double kPaperPlateX = 0.56, kPaperPlateAbsY = 0.33, kPaperPlateJitter_m = 0.01;
 constexpr double kPlateMinX = 0.45, kPlateMaxX = 0.68;
 constexpr double kPlateMinAbsY = 0.30, kPlateMaxAbsY = 0.36;
-// The paper's robot experiment records two takes of every plate-and-bowl configuration.
+// The paper's robot experiment records two takes of every plate-and-bowl configuration, the
+// plate on one side of the table or the other: four demonstrations.
 constexpr int kPaperDemosPerConfiguration = 2;
+constexpr int kPlateSides = 2;
 // The toast waits at a fixed pick-up place (the paper does not say; a toaster or a plate of toast
 // by the robot): at 64 x 64 pixels a 2 cm shift is one pixel, too little to steer a grasp by.
 constexpr double kToastX = 0.33, kToastJitter = 0.0;
@@ -141,6 +143,8 @@ void Tabletop::Reset(uint64_t seed) {
 int Tabletop::DemosPerConfiguration() const {
   return options_.layout == "paper" ? kPaperDemosPerConfiguration : 1;
 }
+
+int Tabletop::SuggestedDemos() const { return kPlateSides * kPaperDemosPerConfiguration; }
 
 void Tabletop::ResetTake(uint64_t seed, uint64_t configuration_seed, int configuration) {
   if (options_.layout != "paper") {

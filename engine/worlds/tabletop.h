@@ -84,6 +84,7 @@ class Tabletop : public World {
   void Reset(uint64_t seed) override;
   /// 2 in the paper layout, 1 in the wide one.
   int DemosPerConfiguration() const override;
+  int SuggestedDemos() const override;
   /// Paper layout: configuration c has the plate on the left (c even) or the right (c odd) at
   /// its marked place, and the bowl where `configuration_seed` puts it.
   void ResetTake(uint64_t seed, uint64_t configuration_seed, int configuration) override;

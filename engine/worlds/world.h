@@ -75,6 +75,10 @@ class World {
   /// experiment records 2 takes of each plate-and-bowl configuration (4 demonstrations = 2
   /// configurations); 1 (the default) makes every demonstration a scenario of its own.
   virtual int DemosPerConfiguration() const { return 1; }
+  /// How many demonstrations the world's protocol asks for before training (the studio points
+  /// to Train once they are kept): on the tabletop the paper's four, two takes on each side of
+  /// the table. 1 (the default): one demonstration is enough to train.
+  virtual int SuggestedDemos() const { return 1; }
   /// Starts a demonstration take: the scene of configuration number `configuration` (0, 1, ...),
   /// drawn from `configuration_seed` (the scenario seed of the configuration's first take), with
   /// the take's own randomness (beacon noise, play data) from `seed`. Takes of one configuration

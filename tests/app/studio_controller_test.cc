@@ -24,6 +24,7 @@
 #include "engine/teach/recorder.h"
 #include "engine/teach/session_setup.h"
 #include "engine/worlds/world_factory.h"
+#include "tests/app/controller_wait.h"
 
 namespace recon::studio {
 namespace {
@@ -56,17 +57,7 @@ class StudioControllerTest : public ::testing::Test {
   static ui::StudioSnapshot WaitFor(const StudioController& controller,
                                     const std::function<bool(const ui::StudioSnapshot&)>& done,
                                     double timeout_s = 60) {
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-    for (;;) {
-      ui::StudioSnapshot s = controller.Snapshot();
-      if (done(s) && controller.Settled()) return s;
-      if (std::chrono::steady_clock::now() > deadline) {
-        ADD_FAILURE() << "timed out; status: " << s.status;
-        return s;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    return testing::WaitForSnapshot(controller, done, timeout_s);
   }
   static void WaitSettled(const StudioController& controller) {
     WaitFor(controller, [](const ui::StudioSnapshot&) { return true; });

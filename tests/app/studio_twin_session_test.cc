@@ -127,6 +127,9 @@ click Collect points and fit)",
           "the take's commit");
     }
     EXPECT_GE(s.episodes[0].samples, 5);
+    // The teacher waited for the arm's way home before the second take (no countdown here):
+    // the ledger counts that wait as the teacher's time.
+    EXPECT_GT(s.teacher_countdown_seconds, 0.0);
 
     // Train both methods.
     driver.RunScript("click Train##step\nclick Train Baseline and RECON", "train");

@@ -184,6 +184,17 @@ class VirtualDisplay {
     return rgb;
   }
 
+  /// The smallest size `window` asks its window manager to allow (WM_NORMAL_HINTS); {0, 0}
+  /// when it asks for none.
+  std::pair<int, int> MinimumSize(unsigned long window) const {
+    XSizeHints hints{};
+    long supplied = 0;
+    if (XGetWMNormalHints(x_, window, &hints, &supplied) == 0 || !(hints.flags & PMinSize)) {
+      return {0, 0};
+    }
+    return {hints.min_width, hints.min_height};
+  }
+
   /// Asks `window` to close as a window manager's close button does (WM_DELETE_WINDOW).
   void RequestClose(unsigned long window) const {
     XEvent event{};
@@ -535,6 +546,51 @@ TEST_P(DesktopWindowApiTest, TakesTypedTextHeldKeysResizeAndClose) {
   display.RequestClose(id);
   EXPECT_TRUE(frames_until([&] { return !open; })) << "the window did not close";
   EXPECT_FALSE(window.Frame(draw)) << "a closed window stays closed";
+}
+
+// The window asks the window manager for the studio's smallest size (Xvfb has none to enforce
+// it), and its close button asks the close guard: refused, the window stays and draws on.
+TEST(DesktopWindowTest, HasAMinimumSizeAndItsCloseButtonAsksFirst) {
+  VirtualDisplay display;
+  ASSERT_EQ(display.error(), "");
+  setenv("DISPLAY", display.name().c_str(), 1);
+  DesktopWindow::Options options;
+  options.title = "minimum size test";
+  options.renderer = {1100, 700, 16.0f};
+  options.min_width = 1024;
+  options.min_height = 640;
+  DesktopWindow window(options);
+  int asked = 0;
+  bool may_close = false;
+  window.SetCloseGuard([&] {
+    ++asked;
+    return may_close;
+  });
+  const auto draw = [] {
+    ImGui::Begin("test");
+    ImGui::End();
+  };
+  ASSERT_TRUE(window.Frame(draw));
+  const unsigned long id = display.FindWindow("^minimum size test$");
+  ASSERT_NE(id, 0u);
+  EXPECT_EQ(display.MinimumSize(id), std::make_pair(1024, 640));
+
+  display.RequestClose(id);
+  bool open = true;
+  for (const auto deadline = Clock::now() + kDeadline; asked == 0 && Clock::now() < deadline;) {
+    open = window.Frame(draw);
+  }
+  EXPECT_EQ(asked, 1);
+  EXPECT_TRUE(open) << "refused, the close button closed the window anyway";
+  for (int i = 0; i < 5 && open; ++i) open = window.Frame(draw);
+  EXPECT_TRUE(open) << "the window closed later without being asked again";
+  may_close = true;
+  display.RequestClose(id);
+  for (const auto deadline = Clock::now() + kDeadline; open && Clock::now() < deadline;) {
+    open = window.Frame(draw);
+  }
+  EXPECT_FALSE(open) << "allowed, the window did not close";
+  EXPECT_EQ(asked, 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(ContextApis, DesktopWindowApiTest,

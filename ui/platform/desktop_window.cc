@@ -193,6 +193,18 @@ DesktopWindow::DesktopWindow(const Options& options) : events_(std::make_unique<
     window_open = false;
     throw;
   }
+  if (options.min_width > 0 && options.min_height > 0) {
+    // GLFW's limits are in window coordinates, the layout's in framebuffer pixels.
+    int window_width = 0, window_height = 0, framebuffer_width = 0, framebuffer_height = 0;
+    glfwGetWindowSize(window_, &window_width, &window_height);
+    glfwGetFramebufferSize(window_, &framebuffer_width, &framebuffer_height);
+    const float per_pixel =
+        framebuffer_width > 0 ? static_cast<float>(window_width) / framebuffer_width : 1.0f;
+    const float scale = renderer_->ui_scale() * per_pixel;
+    glfwSetWindowSizeLimits(window_, static_cast<int>(std::ceil(options.min_width * scale)),
+                            static_cast<int>(std::ceil(options.min_height * scale)), GLFW_DONT_CARE,
+                            GLFW_DONT_CARE);
+  }
   description_ =
       std::string(ContextApiName(glfwGetWindowAttrib(window_, GLFW_CONTEXT_CREATION_API))) + "; " +
       renderer_->gl_description();
@@ -264,7 +276,10 @@ bool DesktopWindow::Frame(const std::function<void()>& draw) {
   } else {
     glfwPollEvents();
   }
-  if (glfwWindowShouldClose(window_)) return false;
+  if (glfwWindowShouldClose(window_)) {
+    if (!may_close_ || may_close_()) return false;
+    glfwSetWindowShouldClose(window_, GLFW_FALSE);  // asked: the window stays until answered
+  }
   int window_width = 0, window_height = 0, framebuffer_width = 0, framebuffer_height = 0;
   glfwGetWindowSize(window_, &window_width, &window_height);
   glfwGetFramebufferSize(window_, &framebuffer_width, &framebuffer_height);

@@ -3,6 +3,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "engine/core/image.h"
 #include "ui/platform/frame_input.h"
@@ -40,6 +41,9 @@ class DesktopWindow {
     bool ui_scale_from_screen = false;
     float min_ui_scale = 0.75f;
     float max_ui_scale = 3.0f;
+    /// The smallest the window may be made, in pixels at UI scale 1 (times the scale taken);
+    /// 0: no limit.
+    int min_width = 0, min_height = 0;
   };
 
   /// Opens the window. Throws UserError naming why when there is no display or GLFW or the GL
@@ -52,8 +56,12 @@ class DesktopWindow {
 
   /// One frame: waits for the next frame's time (or for input), reads the window's events, runs
   /// `draw` (the ImGui calls of the whole window) and shows the result. Returns false, drawing
-  /// nothing, once the user has asked to close the window.
+  /// nothing, once the user has asked to close the window (and the close guard let it).
   bool Frame(const std::function<void()>& draw);
+  /// Asked when the window's close button is pressed: true lets the window close, false keeps
+  /// it open (the application then asks the person, e.g. whether to stop a training). Without
+  /// one the window closes.
+  void SetCloseGuard(std::function<bool()> may_close) { may_close_ = std::move(may_close); }
 
   /// The last frame drawn, top row first, at the window's framebuffer size (empty before the
   /// first frame). The window's back buffer is undefined once swapped, so the frame is drawn
@@ -79,6 +87,7 @@ class DesktopWindow {
   GLFWwindow* window_ = nullptr;
   std::unique_ptr<Events> events_;
   std::unique_ptr<UiRenderer> renderer_;
+  std::function<bool()> may_close_;
   std::string description_;
   double frame_period_s_ = 0;
   double last_frame_s_ = -1;

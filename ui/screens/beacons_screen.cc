@@ -41,9 +41,10 @@ void DrawBeaconsScreen(const ScreenContext& context) {
                 pending.c_str());
   }
   context.textures.camera.Update(s.camera, s.camera_frame);
-  // The view takes at most half the room (480 px), the beacons' panel the rest, from 1024 px up.
+  // The view takes half the room (480 px at most, more in a tall window), the beacons' panel
+  // the rest, from 1024 px up.
   const float room = ImGui::GetContentRegionAvail().x;
-  const float camera_width = std::clamp(room * 0.5f, Px(240), Px(480));
+  const float camera_width = GrowingViewWidth(0.5f, Px(240), Px(480));
   const float panel_width = std::max(Px(200), room - camera_width - Px(16));
   ImGui::BeginGroup();
   const std::optional<std::string> clicked =

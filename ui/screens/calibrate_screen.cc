@@ -43,7 +43,7 @@ void DrawGuidedCalibration(const ScreenContext& context, const GuidedCalibration
     marks.push_back(tag);
   }
   context.textures.camera.Update(s.camera, s.camera_frame);
-  const float width = std::clamp(ImGui::GetContentRegionAvail().x * 0.6f, Px(240), Px(560));
+  const float width = GrowingViewWidth(0.6f, Px(240), Px(560));
   CameraView("camera##calibrate", context.textures.camera, width, marks, {});
   if (c.beacon_uwb_m.size() == 3) {
     ImGui::Text("Beacon reads (%.3f, %.3f, %.3f) m in its own frame", c.beacon_uwb_m[0],

@@ -25,7 +25,12 @@ void DrawConnectedDevices(const ScreenContext& context) {
     ImGui::TextDisabled("No UWB beacons, cameras, gamepads or robots found.");
     return;
   }
-  if (!ImGui::BeginTable("connected", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+  // Sized to their content (a device's name is long); the detail takes what is left and wraps.
+  if (!ImGui::BeginTable(
+          "connected", 4,
+          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+    return;
+  }
   ImGui::TableSetupColumn("Kind");
   ImGui::TableSetupColumn("Path");
   ImGui::TableSetupColumn("Name");
@@ -59,7 +64,9 @@ void DrawCellScreen(const ScreenContext& context) {
                       s.cell_kind.c_str()));
   }
   ImGui::Spacing();
-  if (ImGui::BeginTable("devices", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+  if (ImGui::BeginTable(
+          "devices", 5,
+          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("Device");
     ImGui::TableSetupColumn("Kind");
     ImGui::TableSetupColumn("Status");
@@ -92,15 +99,17 @@ void DrawCellScreen(const ScreenContext& context) {
   }
   if (s.devices.empty()) ImGui::TextDisabled("No devices: open or create a session first.");
   if (!s.safety.limits.empty()) {
-    ImGui::Text("Safety envelope on every arm command: %s. Limited so far: %lld of %lld commands.",
-                s.safety.limits.c_str(), static_cast<long long>(s.safety.changed),
-                static_cast<long long>(s.safety.commands));
+    ImGui::TextWrapped(
+        "Safety envelope on every arm command: %s. Limited so far: %lld of %lld commands.",
+        s.safety.limits.c_str(), static_cast<long long>(s.safety.changed),
+        static_cast<long long>(s.safety.commands));
   }
   ImGui::Spacing();
   DrawConnectedDevices(context);
   ImGui::Spacing();
   context.textures.camera.Update(s.camera, s.camera_frame);
-  CameraView("camera##cell", context.textures.camera, Px(480), s.beacons, {});
+  CameraView("camera##cell", context.textures.camera, GrowingViewWidth(0.5f, Px(240), Px(480)),
+             s.beacons, {});
 }
 
 }  // namespace recon::ui

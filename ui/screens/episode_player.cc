@@ -15,16 +15,22 @@ void DrawEpisodePlayer(const ScreenContext& context, float width) {
   if (p.episode.empty()) return;
   ImGui::BeginGroup();
   ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
-  ImGui::Text("%s, what the robot's camera saw: step %d of %d", p.episode.c_str(), p.frame + 1,
-              p.frames);
-  ImGui::SameLine();
+  const std::string title = Format("%s, what the robot's camera saw: step %d of %d",
+                                   p.episode.c_str(), p.frame + 1, p.frames);
+  ImGui::TextWrapped("%s", title.c_str());
+  // Close beside the title where the width allows, else under it: never past the column.
+  const float close_width = ImGui::CalcTextSize("Close").x + 2 * ImGui::GetStyle().FramePadding.x;
+  if (ImGui::CalcTextSize(title.c_str()).x + ImGui::GetStyle().ItemSpacing.x + close_width <=
+      width) {
+    ImGui::SameLine();
+  }
   if (Button("Close##episode-playback")) {  // back to the live views
     context.commands.Push(ShowEpisodeFrame{});
   }
   if (p.methods.empty()) {
     ImGui::TextDisabled("Train a policy to see which pixels it acts on here.");
   } else {
-    DrawSaliencyToggle(context, true);
+    DrawSaliencyToggle(context, true, width);
     if (context.snapshot.saliency != SaliencyMode::kOff && p.methods.size() > 1) {
       ImGui::TextUnformatted("The policy asked:");
       for (const auto& [method, label] : p.methods) {

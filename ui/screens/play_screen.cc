@@ -1,25 +1,44 @@
 #include <imgui.h>
 
+#include <string>
+
 #include "ui/screens/screens.h"
 #include "ui/widgets/camera_view.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
 
+std::string PlayDataHowTo(const StudioSnapshot& s) {
+  // Who moves the objects depends on the cell. The simulated teacher moves the bowl within a
+  // scene (Tabletop::SamplePlay), and the chunks follow the takes' scenes (StartSessionPlay),
+  // so the plate and its beacon move from one scene to the next.
+  std::string who;
+  if (s.studio_cell == "real") {
+    who = "Move the objects around by hand (the beacon stays on its object)";
+  } else if (s.play_scene_samples > 0) {
+    who = Format(
+        "The simulated teacher moves the bowl around; every %d samples a new scene "
+        "puts the plate, and the beacon on it, somewhere else",
+        s.play_scene_samples);
+  } else {
+    who =
+        "The simulated teacher moves the bowl around, and each new scene moves the plate with "
+        "its beacon";
+  }
+  return who +
+         " while the camera and the beacons record: these (image, beacon) pairs teach the "
+         "features where the objects are, without any demonstration. Optional; it helps RECON "
+         "most when demonstrations are few.";
+}
+
 void DrawPlayScreen(const ScreenContext& context) {
   const StudioSnapshot& s = context.snapshot;
   ScreenHeader("Play data", teach::StepPurpose(teach::Step::kPlay));
-  // Who moves the objects depends on the cell: the simulated teacher moves the bowl itself.
-  ImGui::TextWrapped(
-      "%s while the camera and the beacons record: these (image, beacon) pairs teach the "
-      "features where the objects are, without any demonstration. Optional; it helps RECON most "
-      "when demonstrations are few.",
-      s.studio_cell == "real" ? "Move the objects around by hand (the beacon stays on its object)"
-                              : "The simulated teacher moves the bowl around, the plate and its "
-                                "beacon stay");
+  ImGui::TextWrapped("%s", PlayDataHowTo(s).c_str());
   context.textures.camera.Update(s.camera, s.camera_frame);
   ImGui::BeginGroup();
-  CameraView("camera##play", context.textures.camera, Px(420), s.beacons, {});
+  CameraView("camera##play", context.textures.camera, GrowingViewWidth(0.5f, Px(300), Px(420)),
+             s.beacons, {});
   ImGui::EndGroup();
   ImGui::SameLine();
   ImGui::BeginGroup();

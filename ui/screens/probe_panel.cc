@@ -7,6 +7,7 @@
 
 #include "ui/screens/screens.h"
 #include "ui/widgets/heat_map_view.h"
+#include "ui/widgets/widget_registry.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -36,9 +37,21 @@ void DrawMaps(const char* id, const std::vector<ProbeView::Map>& maps, const cha
 void DrawProbeResults(const ScreenContext& context) {
   const ProbeView& p = context.snapshot.probe;
   if (!p.out_of_date.empty()) StatusText(Status::kWarning, "Out of date: " + p.out_of_date + ".");
-  for (const std::string& verdict : p.verdicts) ImGui::BulletText("%s", verdict.c_str());
+  for (const std::string& verdict : p.verdicts) {
+    ImGui::Bullet();
+    ImGui::TextWrapped("%s", verdict.c_str());
+  }
   const int columns = p.rolled_out ? 6 : 5;
-  if (ImGui::BeginTable("probe", columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+  // Sized to its headers and numbers; a window too narrow for them scrolls it sideways (its
+  // height fits its rows and the scrollbar).
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const float height = static_cast<float>(p.rows.size() + 1) *
+                           (ImGui::GetTextLineHeight() + 2 * style.CellPadding.y) +
+                       style.ScrollbarSize + Px(4);
+  if (ImGui::BeginTable("probe", columns,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                            ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                        ImVec2(0, height))) {
     ImGui::TableSetupColumn("Policy");
     ImGui::TableSetupColumn("Object");
     ImGui::TableSetupColumn("Action change / 10 cm");
@@ -71,7 +84,8 @@ void DrawProbeResults(const ScreenContext& context) {
     }
     ImGui::EndTable();
   }
-  ImGui::TextDisabled("%s", p.note.c_str());
+  WidgetRegistry::ForThisThread().AddLastRegion("probe-results");
+  HintText(p.note);
   if (p.maps.empty() && p.outcome_maps.empty()) return;
   ImGui::TextUnformatted("Heat maps, moving:");
   for (const std::string& object : p.objects) {
@@ -81,31 +95,42 @@ void DrawProbeResults(const ScreenContext& context) {
     }
   }
   DrawMaps("heat-map", p.maps, "first action", p.shown_object);
-  ImGui::TextDisabled(
-      "Brighter: the action changes more with the %s there (same scale for "
-      "every policy); seen from behind the robot.",
-      p.shown_object.c_str());
+  HintText(
+      Format("Brighter: the action changes more with the %s there (same scale for every "
+             "policy); seen from behind the robot.",
+             p.shown_object.c_str()));
   if (p.outcome_maps.empty()) return;
   DrawMaps("outcome-map", p.outcome_maps, "whole rollouts", p.shown_object);
-  ImGui::TextDisabled(
-      "Bright: the rollout succeeded with the %s there; dark: it failed; blank: not rolled out "
-      "(overlap, or out of the arm's reach).",
-      p.shown_object.c_str());
+  HintText(
+      Format("Bright: the rollout succeeded with the %s there; dark: it failed; blank: not "
+             "rolled out (overlap, or out of the arm's reach).",
+             p.shown_object.c_str()));
 }
 
 }  // namespace
 
-void DrawSaliencyToggle(const ScreenContext& context, bool hint_below) {
+void DrawSaliencyToggle(const ScreenContext& context, bool hint_below, float width) {
   const SaliencyMode shown = context.snapshot.saliency;
-  ImGui::TextUnformatted("What drives the action:");
+  constexpr char kTitle[] = "What drives the action:";
+  ImGui::TextUnformatted(kTitle);
   const struct {
     const char* label;
     SaliencyMode mode;
   } choices[] = {{"Off##saliency", SaliencyMode::kOff},
                  {"Gradient##saliency", SaliencyMode::kGradient},
                  {"Occlusion##saliency", SaliencyMode::kOcclusion}};
+  const ImGuiStyle& style = ImGui::GetStyle();
+  float row = ImGui::CalcTextSize(kTitle).x;
   for (const auto& choice : choices) {
-    ImGui::SameLine();
+    row += style.ItemSpacing.x + ImGui::CalcTextSize(choice.label, nullptr, true).x +
+           2 * style.FramePadding.x;
+  }
+  // The buttons go under the title where the line is too narrow for both.
+  const bool one_line = width <= 0 || row <= width;
+  bool first = true;
+  for (const auto& choice : choices) {
+    if (one_line || !first) ImGui::SameLine();
+    first = false;
     if (Button(choice.label, choice.mode != shown, "shown now")) {
       context.commands.Push(SetSaliency{choice.mode});
     }
@@ -161,6 +186,13 @@ void DrawProbePanel(const ScreenContext& context) {
           "needs the simulated cell, which this real cell's session cannot have");
     }
   }
+  // Results that have just arrived are brought into view: they land under the rollouts, below
+  // the fold of most windows.
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  const ImGuiID seen_id = ImGui::GetID("probe-results-seen");
+  const bool arrived = p.present && !p.running && storage->GetInt(seen_id, 1) == 0;
+  storage->SetInt(seen_id, p.present && !p.running ? 1 : 0);
+  if (arrived) ImGui::SetScrollHereY(0.0f);
   if (p.present) DrawProbeResults(context);
 }
 

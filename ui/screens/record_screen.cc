@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 
+#include "ui/screens/grip_readout.h"
 #include "ui/screens/screens.h"
 #include "ui/widgets/camera_view.h"
 #include "ui/widgets/height_gauge.h"
 #include "ui/widgets/orbit_view.h"
+#include "ui/widgets/widget_registry.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -21,12 +23,27 @@ constexpr float kCameraWidth = 420.0f;
 // 3-D view, and sees here what the policy will see.
 constexpr float kThumbnailWidth = 112.0f;
 
-float CameraWidth() {
-  return std::clamp(ImGui::GetContentRegionAvail().x * 0.45f, Px(240), Px(kCameraWidth));
+// What the right column (the take's buttons, the list of demonstrations) needs beside the views.
+constexpr float kRightColumnWidth = 620.0f;
+
+float CameraWidth() { return GrowingViewWidth(0.45f, Px(240), Px(kCameraWidth)); }
+
+/// The teacher's 3-D view grows with the window: all the width the right column leaves (a third
+/// of it at least), as long as the readout and the keys under it stay in view.
+float TeacherViewWidth() {
+  const float room = ImGui::GetContentRegionAvail().x;
+  const float by_room =
+      std::max(room * 0.34f, room - Px(kThumbnailWidth + 16) - Px(kRightColumnWidth));
+  const float by_height = (ImGui::GetWindowHeight() - Px(420)) * 4.0f / 3.0f;
+  return std::max(Px(240), std::min(by_room, by_height));
 }
 
-float TeacherViewWidth() {
-  return std::clamp(ImGui::GetContentRegionAvail().x * 0.34f, Px(240), Px(480));
+/// The episode list's buttons, Delete, Re-record and Bad (or Good), side by side.
+float EpisodeButtonsWidth() {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  return ImGui::CalcTextSize("Delete").x + ImGui::CalcTextSize("Re-record").x +
+         std::max(ImGui::CalcTextSize("Good").x, ImGui::CalcTextSize("Bad").x) +
+         6 * style.FramePadding.x + 2 * style.ItemSpacing.x;
 }
 
 bool KeyDown(ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)); }
@@ -123,74 +140,13 @@ void DrawTeleopChoice(const ScreenContext& context) {
   DrawMappings(s);
 }
 
-// The jaw's hints show once the grip point is this close to the object in the plane.
-constexpr float kNearObject_m = 0.08f;
-
-/// What to do next to grasp, from where the object lies across the open fingers and how high
-/// they are: the jaw's axis first (a close off it catches nothing however low), then the height.
-std::string GraspHint(const StudioSnapshot& s) {
-  const GripView& g = s.grip;
-  const bool band = g.grasp_max_m > g.grasp_min_m;
-  if (g.state == GripState::kClosedOnNothing) {
-    if (g.alignment_known && g.off_axis_m > g.off_axis_window_m &&
-        g.object_distance_m < kNearObject_m) {
-      return Format("It closed %.1f cm off the jaw's axis: open (Space) and line up",
-                    100 * (g.off_axis_m - g.off_axis_window_m));
-    }
-    return "";
-  }
-  if (g.state != GripState::kOpen || !band) return "";
-  // Only over the object: away from it, the arrows are what matters, not the jaw.
-  if (g.alignment_known && g.object_distance_m < kNearObject_m) {
-    if (g.off_axis_m > g.off_axis_window_m) {
-      return Format("%.1f cm off the jaw's axis (cyan): move across it, or turn the wrist",
-                    100 * (g.off_axis_m - g.off_axis_window_m));
-    }
-    if (g.beyond_pads_m > g.beyond_pads_window_m) {
-      return Format("%.1f cm beyond the finger pads: move along the cyan line",
-                    100 * (g.beyond_pads_m - g.beyond_pads_window_m));
-    }
-  }
-  const float above = s.grip_m[2] - g.grasp_max_m;
-  if (above > 0 && above < 0.05f) return Format("lower %.1f cm more before closing", 100 * above);
-  if (above <= 0) return "Low enough: close the gripper";
-  return "";
-}
-
-/// What the gripper does with the object, in words and colour: whether a grasp worked is the
-/// first thing a teacher needs to know, and a closed gripper says nothing of it.
+/// The grip's readout (ReadGrip): four lines whatever the state, so what is drawn under them
+/// never moves.
 void DrawGripState(const StudioSnapshot& s) {
-  const std::string object = s.grip.object.empty() ? "the object" : "the " + s.grip.object;
-  switch (s.grip.state) {
-    case GripState::kHolding:
-      StatusText(Status::kOk, "Holding " + object);
-      break;
-    case GripState::kClosedOnNothing:
-      StatusText(Status::kError, "Closed on nothing: open (Space), line up and try again");
-      break;
-    case GripState::kClosing:
-      StatusText(Status::kBusy, "Closing...");
-      break;
-    case GripState::kOpen:
-      StatusText(Status::kOff, "Gripper open");
-      break;
-    case GripState::kUnknown:
-      StatusText(Status::kOff, s.gripper_closed ? "Gripper closed" : "Gripper open");
-      break;
-  }
-  // Four lines whatever the state, so what is drawn under them never moves.
-  const float height = s.grip_m[2];
-  const bool band = s.grip.grasp_max_m > s.grip.grasp_min_m;
-  const bool holding = s.grip.state == GripState::kHolding;
-  if (band && !holding) {
-    ImGui::Text("Height %.1f cm; it grasps %s at %.1f-%.1f cm", 100 * height, object.c_str(),
-                100 * s.grip.grasp_min_m, 100 * s.grip.grasp_max_m);
-  } else if (holding) {
-    ImGui::Text("Height %.1f cm, carrying %s", 100 * height, object.c_str());
-  } else {
-    ImGui::Text("Height %.1f cm", 100 * height);
-  }
-  ImGui::TextUnformatted(GraspHint(s).c_str());
+  const GripReadout readout = ReadGrip(s);
+  StatusText(readout.status, readout.state);
+  ImGui::TextUnformatted(readout.height.c_str());
+  ImGui::TextUnformatted(readout.hint.c_str());
   const GripView& g = s.grip;
   if (s.teleop == TeleopMode::kScripted) {
     ImGui::TextUnformatted("");
@@ -247,34 +203,40 @@ void DrawTakeControls(const ScreenContext& context, bool blocked, const std::str
   const bool pending = !s.pending_take.empty();
   const bool counting = s.recording && (s.countdown_s > 0 || s.take_homing);
   const float width = std::min(Px(520), ImGui::GetContentRegionAvail().x);
+  const ImGuiStyle& style = ImGui::GetStyle();
+  // One width for both labels of the second button, so Discard stays where it is.
+  const float keep_width =
+      ImGui::CalcTextSize("Keep as not done").x + 2 * ImGui::GetStyle().FramePadding.x;
+  // Discard goes under the others where the column is too narrow for the three (a window's
+  // size, not the take's state, decides).
+  const float row = ImGui::CalcTextSize("Start recording").x + keep_width +
+                    ImGui::CalcTextSize("Discard").x + 4 * style.FramePadding.x +
+                    2 * style.ItemSpacing.x;
+  const bool one_row = row <= width;
+  // As high as its tallest state needs (a take's last seconds: its line, the bar, the warning,
+  // each line wrapped once in a narrow column), whatever state it is in.
+  const float height = (one_row ? 1 : 2) * ImGui::GetFrameHeightWithSpacing() +
+                       (width < Px(500) ? 5 : 3) * ImGui::GetTextLineHeightWithSpacing() +
+                       ImGui::GetFrameHeightWithSpacing();
   ImGui::PushStyleColor(ImGuiCol_ChildBg, ImVec4(0, 0, 0, 0));
-  ImGui::BeginChild("take-controls", ImVec2(width, Px(126)), false,
+  ImGui::BeginChild("take-controls", ImVec2(width, height), false,
                     ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
   const bool take = s.recording || pending;
   if (Button("Start recording", !take && !blocked, take ? "finish the take first" : why)) {
     context.commands.Push(StartRecording{});
   }
   ImGui::SameLine();
-  // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked. One
-  // width for both labels, so Discard stays where it is.
-  const float keep_width =
-      ImGui::CalcTextSize("Keep as not done").x + 2 * ImGui::GetStyle().FramePadding.x;
+  // A take that ended unfinished waits for the teacher: nothing is kept or lost unasked.
   if (Button(pending ? "Keep as not done##take" : "Stop and keep##take",
              pending || (s.recording && !counting),
              counting ? "the take has not started" : "no take is running", keep_width)) {
     context.commands.Push(StopRecording{});
   }
-  // Discard goes under the others where the column is too narrow for the three (a window's
-  // size, not the take's state, decides).
-  const ImGuiStyle& style = ImGui::GetStyle();
-  const float row = ImGui::CalcTextSize("Start recording").x + keep_width +
-                    ImGui::CalcTextSize("Discard").x + 4 * style.FramePadding.x +
-                    2 * style.ItemSpacing.x;
-  if (row <= width) ImGui::SameLine();
+  if (one_row) ImGui::SameLine();
   if (Button("Discard##take", take, "no take is running")) {
     context.commands.Push(DiscardRecording{});
   }
-  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width);
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width - style.WindowPadding.x);
   if (pending) {
     StatusText(Status::kWarning, s.pending_take + ".");
   } else if (counting && s.countdown_s <= 0) {
@@ -334,54 +296,72 @@ void DrawRecordScreen(const ScreenContext& context) {
   ImGui::PushTextWrapPos(start_x + left_width);
   DrawTeleopChoice(context);
   // The parts, so 4.6 s before the first take reads as what it is (placing the beacons).
-  ImGui::Text("Teacher's time so far: %.1f s (kept takes %.1f s)", s.teacher_seconds,
-              s.teacher_demo_seconds);
-  // Not kept: the takes discarded or recorded over, and the countdowns before a person's takes.
-  ImGui::TextDisabled("unkept %.1f s (%d takes, countdowns), play %.1f s, beacons %.1f s",
-                      s.teacher_discarded_seconds + s.teacher_countdown_seconds,
-                      s.teacher_discarded_takes, s.teacher_play_seconds,
-                      s.teacher_placement_seconds);
+  ImGui::TextWrapped("Teacher's time so far: %.1f s (kept takes %.1f s)", s.teacher_seconds,
+                     s.teacher_demo_seconds);
+  // Not kept: the takes discarded or recorded over, and the waits before a person's takes (the
+  // countdown, or the arm's way home when longer).
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("unkept %.1f s (%d takes, countdowns), play %.1f s, beacons %.1f s",
+                     s.teacher_discarded_seconds + s.teacher_countdown_seconds,
+                     s.teacher_discarded_takes, s.teacher_play_seconds,
+                     s.teacher_placement_seconds);
+  ImGui::PopStyleColor();
   ImGui::PopTextWrapPos();
   ImGui::EndGroup();
+  // The columns are regions: text running out of one into the other is a layout fault.
+  WidgetRegistry::ForThisThread().AddLastRegion("record:views-column");
   // The right side starts at one place whatever the left side shows (a teleop chosen, a take).
   ImGui::SameLine(start_x + left_width + ImGui::GetStyle().ItemSpacing.x);
   ImGui::BeginGroup();
   DrawTakeControls(context, blocked, why);
   ImGui::Spacing();
   ImGui::Text("Demonstrations (%zu)", s.episodes.size());
-  ImGui::SameLine();
-  ImGui::TextDisabled("click one to watch it");
+  const std::string undo_label = "Undo delete " + s.undo_delete;
+  const float undo_width =
+      ImGui::CalcTextSize(undo_label.c_str()).x + 2 * ImGui::GetStyle().FramePadding.x;
+  const float hint_width = ImGui::CalcTextSize("click one to watch it").x;
+  // The hint gives way to Undo where the line has no room for both: the list never moves down.
+  if (s.undo_delete.empty() || ImGui::GetContentRegionAvail().x - ImGui::GetItemRectSize().x >
+                                   hint_width + undo_width + 3 * ImGui::GetStyle().ItemSpacing.x) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("click one to watch it");
+  }
   if (!s.undo_delete.empty()) {
     ImGui::SameLine();
     // Enabled exactly when the controller takes it (StudioCell::RequireIdle).
     const bool idle = !s.recording && s.pending_take.empty() && s.busy_with.empty();
-    if (Button(("Undo delete " + s.undo_delete + "##undo-delete").c_str(), idle,
+    if (Button((undo_label + "##undo-delete").c_str(), idle,
                s.busy_with.empty() ? std::string("finish the take first")
                                    : "wait for " + s.busy_with + " to end")) {
       context.commands.Push(UndoDelete{});
     }
   }
+  // As wide as its columns (a row is one click target: none beyond them), or the room left.
+  const float columns[] = {Px(104), Px(62), Px(52), Px(42), EpisodeButtonsWidth()};
+  float table_width = ImGui::GetStyle().ScrollbarSize + Px(2);
+  for (float column : columns) table_width += column + 2 * ImGui::GetStyle().CellPadding.x + 1;
   if (ImGui::BeginTable("episodes", 5,
                         ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                             ImGuiTableFlags_ScrollX,
-                        ImVec2(0, Px(320)))) {
-    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, Px(104));
-    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, Px(62));
-    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, Px(52));
-    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, Px(42));
+                        ImVec2(std::min(table_width, ImGui::GetContentRegionAvail().x), Px(320)))) {
+    ImGui::TableSetupColumn("Episode", ImGuiTableColumnFlags_WidthFixed, columns[0]);
+    ImGui::TableSetupColumn("Samples", ImGuiTableColumnFlags_WidthFixed, columns[1]);
+    ImGui::TableSetupColumn("Time", ImGuiTableColumnFlags_WidthFixed, columns[2]);
+    ImGui::TableSetupColumn("Done", ImGuiTableColumnFlags_WidthFixed, columns[3]);
     // Fixed widths: a narrow window scrolls the table sideways instead of clipping its buttons.
-    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, Px(226));
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed, columns[4]);
     ImGui::TableHeadersRow();
     for (const EpisodeView& e : s.episodes) {
       ImGui::PushID(e.name.c_str());
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      // The name plays the demonstration back (in the live views' place) when clicked.
+      // The row plays the demonstration back (in the live views' place) when clicked anywhere
+      // but on its buttons.
       const bool shown = s.episode_playback.episode == e.name;
       if (e.bad)
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-      if (Selectable((e.name + (e.bad ? " (bad)" : "") + "##watch").c_str(), shown,
-                     e.problem.empty()) &&
+      if (SelectableRow((e.name + (e.bad ? " (bad)" : "") + "##watch").c_str(), shown,
+                        e.problem.empty()) &&
           !shown) {
         context.commands.Push(ShowEpisodeFrame{e.name, 0, s.episode_playback.method});
       }
@@ -410,6 +390,7 @@ void DrawRecordScreen(const ScreenContext& context) {
     ImGui::EndTable();
   }
   ImGui::EndGroup();
+  WidgetRegistry::ForThisThread().AddLastRegion("record:take-column");
 }
 
 }  // namespace recon::ui

@@ -156,7 +156,10 @@ void DrawRolloutsScreen(const ScreenContext& context) {
     }
   }
   ImGui::Spacing();
-  if (ImGui::BeginTable("rollouts", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+  // Sized to the headers: the metric's name is long, and a header cut short names nothing.
+  if (ImGui::BeginTable(
+          "rollouts", 4,
+          ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("Policy (beacons removed)");
     const std::string metric = s.rollouts.empty() ? "Metric" : s.rollouts[0].metric_name;
     ImGui::TableSetupColumn(metric.c_str());

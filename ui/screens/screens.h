@@ -46,14 +46,22 @@ void DrawTrialsPanel(const ScreenContext& context);
 /// The Rollouts step's "Check what it looks at" panel (probe_panel.cc).
 void DrawProbePanel(const ScreenContext& context);
 /// Off / Gradient / Occlusion: the saliency over the frames played back (probe_panel.cc); what
-/// the colours mean beside the buttons, or under them where the space is narrow.
-void DrawSaliencyToggle(const ScreenContext& context, bool hint_below = false);
+/// the colours mean beside the buttons, or under them where the space is narrow. Within
+/// `width` (0: the line's room), the buttons going under their title where it is narrower.
+void DrawSaliencyToggle(const ScreenContext& context, bool hint_below = false, float width = 0);
 /// The Record step's playback of a recorded demonstration with the saliency toggle, `width`
 /// wide (episode_player.cc), in the live views' place.
 void DrawEpisodePlayer(const ScreenContext& context, float width);
 /// The Session menu of the menu bar (open, recent sessions) and the session picker page.
 void DrawSessionMenu(const ScreenContext& context);
 void DrawSessionPicker(const ScreenContext& context);
+
+/// While the snapshot says the window's close button was pressed with something running: a
+/// modal question, keep it running or stop it and close (AnswerClose). close_question.cc.
+void DrawCloseQuestion(const ScreenContext& context);
+
+/// What moves while play data records, as the Play data screen says it (play_screen.cc).
+std::string PlayDataHowTo(const StudioSnapshot& snapshot);
 
 /// The status of `step` in the snapshot.
 const teach::StepStatus& StatusOf(const StudioSnapshot& snapshot, teach::Step step);

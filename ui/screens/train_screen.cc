@@ -4,6 +4,7 @@
 
 #include "ui/screens/screens.h"
 #include "ui/widgets/loss_plot.h"
+#include "ui/widgets/widget_registry.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -57,10 +58,20 @@ void DrawTrainScreen(const ScreenContext& context) {
                     WhyBlocked(s, teach::Step::kTrain))) {
     context.commands.Push(StartTraining{{"baseline", "recon"}});
   }
-  if (!s.teacher_mix_warning.empty()) {
+  for (const std::string* warning : {&s.teacher_mix_warning, &s.slow_takes_warning}) {
+    if (warning->empty()) continue;
     ImGui::PushTextWrapPos(ImGui::GetContentRegionAvail().x);
-    StatusText(Status::kWarning, s.teacher_mix_warning);
+    StatusText(Status::kWarning, *warning);
     ImGui::PopTextWrapPos();
+  }
+  // A training the studio's closing cut short: the models shown are the older ones.
+  if (!s.training_cut_short.empty() && !s.training_running) {
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::BeginGroup();
+    StatusText(Status::kWarning, s.training_cut_short);
+    ImGui::EndGroup();
+    ImGui::PopTextWrapPos();
+    WidgetRegistry::ForThisThread().AddLastRegion("training-cut-short");
   }
   ImGui::Spacing();
   // Side by side, as the paper compares them.

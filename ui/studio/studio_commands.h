@@ -54,6 +54,12 @@ struct CancelRollouts {};
 /// Closes the studio (Session > Quit). The application acts on it, not the controller: the
 /// window closes as with its close button, and a headless script ends there.
 struct Quit {};
+/// The answer to the question the window's close button raises while something runs
+/// (StudioSnapshot::close_requested): stop it and close (`close`), or keep it running. The
+/// application acts on it, as on Quit.
+struct AnswerClose {
+  bool close = false;
+};
 struct RunRollouts {
   int tests = 10;
 };
@@ -172,9 +178,9 @@ using StudioCommand =
                  RecordPlay, StartTraining, CancelTraining, RunRollouts, CancelRollouts,
                  ShowRolloutFrame, WriteReport, DismissErrors, SetTeleopMode, TeleopInput, StopPlay,
                  PlayRollouts, ShowSessionPicker, OpenSession, EmergencyStop, RescanDevices, Quit,
-                 UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials, RunTrial,
-                 StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, ShowEpisodeFrame, RunProbe,
-                 CancelProbe, ShowProbeObject, SetSaliency>;
+                 AnswerClose, UndoDelete, OpenReport, SetTeacherView, ToggleGripper, StartTrials,
+                 RunTrial, StopTrial, JudgeTrial, EndTrials, ShowTrialFrame, ShowEpisodeFrame,
+                 RunProbe, CancelProbe, ShowProbeObject, SetSaliency>;
 
 /// Commands from the UI thread to the controller; safe to push and drain from different threads.
 class CommandQueue {

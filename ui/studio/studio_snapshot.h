@@ -361,6 +361,8 @@ struct StudioSnapshot {
   std::vector<EpisodeView> episodes;
   /// Said when the good demonstrations come from more than one teleop (teach::TeacherMixWarning).
   std::string teacher_mix_warning;
+  /// Said when some kept takes are much slower than the others (teach::SlowTakesWarning).
+  std::string slow_takes_warning;
   /// Everything the teacher spent so far: kept and discarded takes, countdowns, play, beacons.
   double teacher_seconds = 0;
   double teacher_discarded_seconds = 0, teacher_countdown_seconds = 0;
@@ -370,6 +372,11 @@ struct StudioSnapshot {
 
   // Play data.
   int play_samples = 0;  ///< committed
+  /// Play samples recorded in one scene before the next puts the objects, the plate and its
+  /// beacon too, somewhere else: a chunk (World::PlaySamplesPerScenario) per demonstration of a
+  /// configuration (World::DemosPerConfiguration), as play chunks follow the takes' scenes.
+  /// 0: not known.
+  int play_scene_samples = 0;
   bool recording_play = false;
   int play_recorded = 0, play_target = 0;  ///< of the running request
   RgbImage play_image;                     ///< the latest play sample's camera image
@@ -380,6 +387,9 @@ struct StudioSnapshot {
   std::vector<TrainingView> training;
   bool training_running = false;
   bool training_cancelling = false;  ///< Cancel was pressed; the trainers stop at their next step
+  /// A training the studio's closing (or a crash) cut short, as the session remembers it, in
+  /// words (studio/training_mark.h); "" when none was.
+  std::string training_cut_short;
   std::vector<RolloutView> rollouts;
   /// A real cell's trials: the one under way, the judged ones, and one played back.
   TrialView trial;
@@ -403,7 +413,11 @@ struct StudioSnapshot {
   /// What runs now and holds the session ("training", "the rollouts", "a recording", ...), empty
   /// when nothing does: what a disabled control names when it says why.
   std::string busy_with;
-  std::string status;               ///< one line at the bottom: what is happening
+  std::string status;  ///< one line at the bottom: what is happening
+  /// The window's close button was pressed while something runs (busy_with): the studio asks
+  /// whether to stop it and close or to keep it running. The application sets it, not the
+  /// controller (the window is the application's).
+  bool close_requested = false;
   std::vector<std::string> errors;  ///< shown until dismissed
 };
 

@@ -3,8 +3,10 @@
 #include <imgui.h>
 
 #include <cfloat>
+#include <string>
 
 #include "ui/platform/frame_input.h"
+#include "ui/widgets/widget_registry.h"
 #include "ui/widgets/widgets.h"
 
 namespace recon::ui {
@@ -16,6 +18,33 @@ constexpr float kStatusHeight = 30.0f;
 constexpr ImGuiWindowFlags kPanel = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                     ImGuiWindowFlags_NoSavedSettings |
                                     ImGuiWindowFlags_NoBringToFrontOnFocus;
+// The step list and the step's screen scroll, with a scrollbar in view, where a window (or a
+// step's results) is taller than the room: nothing is cut off out of sight.
+constexpr ImGuiWindowFlags kScrollingPanel =
+    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+    ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_HorizontalScrollbar;
+
+/// A new step's screen starts at its top, not where the last one was scrolled to.
+void ScrollToTopOnNewStep(const StudioSnapshot& snapshot) {
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  const ImGuiID id = ImGui::GetID("shown-step");
+  const int shown = (snapshot.picking_session || !snapshot.session_open)
+                        ? -1
+                        : static_cast<int>(snapshot.current_step);
+  if (storage->GetInt(id, -2) != shown) ImGui::SetScrollY(0.0f);
+  storage->SetInt(id, shown);
+}
+
+/// What a window smaller than the studio's smallest layout says, or "" when it is not: the
+/// panels scroll, so nothing is lost, but the person should know why they must.
+std::string WindowTooSmall(const ImVec2& display) {
+  const float width = Px(static_cast<float>(kMinWindowWidth));
+  const float height = Px(static_cast<float>(kMinWindowHeight));
+  if (display.x >= width - 0.5f && display.y >= height - 0.5f) return "";
+  // Short: it shares the line with the e-stop button in the narrowest of windows.
+  return Format("Window smaller than %.0f x %.0f: scroll to see all", width, height);
+}
 
 void DrawScreen(const ScreenContext& context) {
   if (context.snapshot.picking_session || !context.snapshot.session_open) {
@@ -47,9 +76,15 @@ void DrawStatusBar(const StudioSnapshot& snapshot, CommandQueue& commands) {
   const SafetyView& safety = snapshot.safety;
   const bool key = ImGui::IsKeyPressed(kEmergencyStopKey, false);
   if (key && !safety.estop) commands.Push(EmergencyStop{true, "F12 pressed"});
+  const std::string too_small = WindowTooSmall(ImGui::GetIO().DisplaySize);
   if (safety.estop) {
     ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.0f, 1.0f), "E-STOP ENGAGED (%s): the arm is stopped.",
                        safety.estop_reason.c_str());
+  } else if (!too_small.empty()) {
+    ImGui::BeginGroup();
+    StatusText(Status::kWarning, too_small);
+    ImGui::EndGroup();
+    WidgetRegistry::ForThisThread().AddLastRegion("window-too-small");
   } else {
     ImGui::TextUnformatted(snapshot.status.empty() ? "Ready." : snapshot.status.c_str());
   }
@@ -116,14 +151,22 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::SetNextWindowPos(ImVec2(0, top));
   ImGui::SetNextWindowSize(ImVec2(Px(kSidebarWidth), body));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.93f, 0.94f, 0.955f, 1.0f));
-  ImGui::Begin("Steps", nullptr, kPanel);
+  ImGui::Begin("Steps", nullptr, kScrollingPanel & ~ImGuiWindowFlags_HorizontalScrollbar);
   DrawSidebar(context);
   ImGui::End();
   ImGui::PopStyleColor();
 
   ImGui::SetNextWindowPos(ImVec2(Px(kSidebarWidth), top));
   ImGui::SetNextWindowSize(ImVec2(display.x - Px(kSidebarWidth), body));
-  ImGui::Begin("Screen", nullptr, kPanel);
+  // Narrower than the smallest layout: the screen keeps that layout and scrolls sideways,
+  // rather than squeezing its columns until they overflow.
+  const float min_content = Px(static_cast<float>(kMinWindowWidth) - kSidebarWidth) -
+                            2 * ImGui::GetStyle().WindowPadding.x;
+  if (display.x < Px(static_cast<float>(kMinWindowWidth))) {
+    ImGui::SetNextWindowContentSize(ImVec2(min_content, 0));
+  }
+  ImGui::Begin("Screen", nullptr, kScrollingPanel);
+  ScrollToTopOnNewStep(snapshot);
   DrawScreen(context);
   ImGui::End();
   DrawErrors(snapshot, commands, ImVec2(Px(kSidebarWidth), top + body),
@@ -132,10 +175,13 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::SetNextWindowPos(ImVec2(0, top + body));
   ImGui::SetNextWindowSize(ImVec2(display.x, Px(kStatusHeight)));
   ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(Px(10), Px(5)));
+  // Exactly its height: the style's smallest window (32 px) would hang it off the window's edge.
+  ImGui::PushStyleVar(ImGuiStyleVar_WindowMinSize, ImVec2(1, 1));
   ImGui::Begin("Status", nullptr, kPanel);
   DrawStatusBar(snapshot, commands);
   ImGui::End();
-  ImGui::PopStyleVar();
+  ImGui::PopStyleVar(2);
+  DrawCloseQuestion(context);
 }
 
 }  // namespace recon::ui

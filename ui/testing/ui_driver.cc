@@ -1,6 +1,7 @@
 #include "ui/testing/ui_driver.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>
 
 #include <chrono>
 #include <cstdio>
@@ -51,15 +52,80 @@ void UiDriver::Hover(float x, float y, bool down) {
   Frame(input);
 }
 
+namespace {
+
+/// All of it in view, or, for one larger than the view (a wide table's row), its middle.
+bool InView(const WidgetPlacement& p) {
+  constexpr float kSlack = 1.0f;
+  const auto fits = [&](float min, float max, float view_min, float view_max) {
+    if (max - min > view_max - view_min) {
+      return (min + max) / 2 >= view_min && (min + max) / 2 <= view_max;
+    }
+    return min >= view_min - kSlack && max <= view_max + kSlack;
+  };
+  return fits(p.rect.min_x, p.rect.max_x, p.panel_view.min_x, p.panel_view.max_x) &&
+         fits(p.rect.min_y, p.rect.max_y, p.panel_view.min_y, p.panel_view.max_y);
+}
+
+/// Moves the scroll of the innermost panel around `p` that scrolls that way by what `p` lies
+/// beyond its view (taking effect next frame). False when none can.
+bool ScrollTowards(const WidgetPlacement& p) {
+  ImGuiWindow* window = ImGui::FindWindowByName(p.panel.c_str());
+  const float down = p.rect.max_y - p.panel_view.max_y, up = p.panel_view.min_y - p.rect.min_y;
+  float right = p.rect.max_x - p.panel_view.max_x, left = p.panel_view.min_x - p.rect.min_x;
+  if (p.rect.max_x - p.rect.min_x > p.panel_view.max_x - p.panel_view.min_x) {
+    // Wider than the view: its middle to the view's middle.
+    right = (p.rect.min_x + p.rect.max_x - p.panel_view.min_x - p.panel_view.max_x) / 2;
+    left = -right;
+  }
+  bool moved = false;
+  // A panel already scrolled as far as it goes hands over to the one holding it (a table's
+  // last row below the fold: the table is at its end, the screen is not).
+  for (ImGuiWindow* w = window; w != nullptr && !moved; w = w->ParentWindow) {
+    const bool can_down = w->Scroll.y<w->ScrollMax.y - 0.5f, can_up = w->Scroll.y> 0.5f;
+    if (w->ScrollbarY && ((down > 0 && can_down) || (up > 0 && can_up))) {
+      ImGui::SetScrollY(w, w->Scroll.y + (up > 0 ? -up : down));
+      moved = true;
+    }
+    const bool can_right = w->Scroll.x<w->ScrollMax.x - 0.5f, can_left = w->Scroll.x> 0.5f;
+    if (w->ScrollbarX && ((right > 0 && can_right) || (left > 0 && can_left))) {
+      ImGui::SetScrollX(w, w->Scroll.x + (left > 0 ? -left : right));
+      moved = true;
+    }
+    if ((w->Flags & ImGuiWindowFlags_ChildWindow) == 0) break;
+  }
+  return moved;
+}
+
+}  // namespace
+
+WidgetPlacement UiDriver::ScrollIntoView(const std::string& label) {
+  if (!Drawn(label)) Frame();
+  for (int attempt = 0; attempt < 6; ++attempt) {
+    const std::optional<WidgetPlacement> p = WidgetRegistry::ForThisThread().FindPlacement(label);
+    if (!p) {
+      throw UserError("no widget labelled '" + label +
+                      "' on screen; drawn: " + Join(WidgetRegistry::ForThisThread().Labels()));
+    }
+    if (InView(*p)) return *p;
+    if (!ScrollTowards(*p)) break;
+    Frame(FrameInput{});
+    WaitFrames(1);
+  }
+  throw UserError("the widget '" + label + "' lies out of view and scrolling does not bring it in");
+}
+
 WidgetRect UiDriver::Locate(const std::string& label, bool enabled_only) {
   if (!Drawn(label)) Frame();  // the widget may appear only once the frame has been drawn
-  const std::optional<WidgetRect> rect = WidgetRegistry::ForThisThread().Find(label);
-  if (!rect) {
+  std::optional<WidgetPlacement> p = WidgetRegistry::ForThisThread().FindPlacement(label);
+  if (!p) {
     throw UserError("no widget labelled '" + label +
                     "' on screen; drawn: " + Join(WidgetRegistry::ForThisThread().Labels()));
   }
-  if (enabled_only && !rect->enabled) throw UserError("the widget '" + label + "' is disabled");
-  return *rect;
+  // Below the fold: scrolled to first, as a person would.
+  if (!InView(*p)) p = ScrollIntoView(label);
+  if (enabled_only && !p->rect.enabled) throw UserError("the widget '" + label + "' is disabled");
+  return p->rect;
 }
 
 void UiDriver::PointAt(const std::string& label) {
@@ -88,11 +154,15 @@ void UiDriver::Scroll(const std::string& label, float notches) {
   WaitFrames(1);
 }
 
+void UiDriver::ClickAt(float x, float y) {
+  Hover(x, y, false);
+  Hover(x, y, true);
+  Hover(x, y, false);
+}
+
 void UiDriver::Click(const std::string& label) {
   const WidgetRect rect = Locate(label);
-  Hover(rect.CentreX(), rect.CentreY(), false);
-  Hover(rect.CentreX(), rect.CentreY(), true);
-  Hover(rect.CentreX(), rect.CentreY(), false);
+  ClickAt(rect.CentreX(), rect.CentreY());
   if (settled_) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (!settled_()) {

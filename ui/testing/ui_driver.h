@@ -28,6 +28,8 @@ class UiDriver {
   /// Throws UserError if no such widget was drawn, naming the labels that were, or if it is
   /// disabled.
   void Click(const std::string& label);
+  /// Clicks at (x, y) in the window, whatever lies there (a row's cell away from its label).
+  void ClickAt(float x, float y);
   /// Moves the pointer onto the widget labelled `label`, enabled or not, without pressing: what a
   /// person does to read why a control is disabled. UserError if no such widget was drawn.
   void PointAt(const std::string& label);
@@ -44,6 +46,10 @@ class UiDriver {
   /// Holds a key (an ImGuiKey value) down for `seconds` of wall time, drawing frames meanwhile,
   /// then releases it: what a teacher does with an arrow key to drive the arm.
   void Hold(int imgui_key, double seconds);
+  /// Scrolls the panels holding the widget labelled `label` until all of it is in view, as a
+  /// person scrolls to what lies below the fold, and returns where it lies then. UserError when
+  /// it was not drawn or scrolling cannot bring it in.
+  WidgetPlacement ScrollIntoView(const std::string& label);
   /// Whether a widget labelled `label` was drawn in the last frame.
   bool Drawn(const std::string& label) const;
   RgbImage Screenshot() { return window_.Screenshot(); }

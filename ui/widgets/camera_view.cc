@@ -19,7 +19,8 @@ std::optional<std::string> CameraView(const char* id, const ImageTexture& textur
   const ImVec2 size(width, texture.height() * scale);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   ImGui::Image(texture.id(), size);
-  WidgetRegistry::ForThisThread().AddLastItem(id);
+  // A region: the objects' click targets lie on it.
+  WidgetRegistry::ForThisThread().AddLastRegion(id);
   ImDrawList* draw = ImGui::GetWindowDrawList();
   std::optional<std::string> clicked;
   const ImVec2 mouse = ImGui::GetIO().MousePos;

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 
@@ -30,6 +31,12 @@ ImU32 StatusColour(Status status) {
 }  // namespace
 
 float Px(float px) { return px * ImGui::GetFontSize() / 16.0f; }
+
+float GrowingViewWidth(float share, float min_width, float max_width) {
+  const float room = ImGui::GetContentRegionAvail().x;
+  const float tall = 0.6f * ImGui::GetWindowHeight() * 4.0f / 3.0f;
+  return std::clamp(room * share, min_width, std::max(max_width, tall));
+}
 
 namespace {
 
@@ -73,6 +80,21 @@ bool Selectable(const char* label, bool selected, bool enabled) {
   const bool clicked = ImGui::Selectable(
       label, selected, enabled ? ImGuiSelectableFlags_None : ImGuiSelectableFlags_Disabled);
   WidgetRegistry::ForThisThread().AddLastItem(label, enabled);
+  return clicked && enabled;
+}
+
+bool SelectableRow(const char* label, bool selected, bool enabled) {
+  ImGuiSelectableFlags flags =
+      ImGuiSelectableFlags_SpanAllColumns | ImGuiSelectableFlags_AllowItemOverlap;
+  if (!enabled) flags |= ImGuiSelectableFlags_Disabled;
+  // As high as the buttons it holds.
+  const bool clicked =
+      ImGui::Selectable(label, selected, flags, ImVec2(0, ImGui::GetFrameHeight()));
+  // Registered without the spacing ImGui adds above and below, which overlaps the next row.
+  const float gap = ImGui::GetStyle().ItemSpacing.y * 0.5f;
+  const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+  WidgetRegistry::ForThisThread().AddRegion(label,
+                                            {min.x, min.y + gap, max.x, max.y - gap, enabled});
   return clicked && enabled;
 }
 
@@ -122,6 +144,12 @@ std::string Format(const char* format, ...) {
   std::vsnprintf(text, sizeof(text), format, args);
   va_end(args);
   return text;
+}
+
+void HintText(const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
 }
 
 void ScreenHeader(const std::string& title, const std::string& purpose) {

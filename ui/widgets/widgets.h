@@ -17,6 +17,9 @@ bool Button(const char* label, bool enabled = true, const std::string& why_disab
             float width = 0);
 /// A selectable row (a list entry, a step in the sidebar).
 bool Selectable(const char* label, bool selected, bool enabled = true);
+/// A table row that is one click target across all its columns, in its first column: buttons
+/// drawn in its other columns stay clickable over it. Registered as a region (it holds them).
+bool SelectableRow(const char* label, bool selected, bool enabled = true);
 /// A menu of the menu bar (true while open: draw its items, then ImGui::EndMenu) and its items.
 bool BeginMenu(const char* label, bool enabled = true);
 /// A drop-down list showing `preview`; its items are Selectables. End it with ImGui::EndCombo.
@@ -31,8 +34,15 @@ void StatusText(Status status, const std::string& text);
 /// A size in the studio's 1x pixels (laid out for a 16 px font) at the UI's scale: the screens
 /// give every fixed size through it, so --ui-scale 2 doubles them with the font.
 float Px(float px);
+/// The width of a live view (a 4:3 image) that grows with the window: `share` of the room left
+/// on the line, at least `min_width`, and at most `max_width` or, in a taller window, as wide as
+/// 60 % of the panel's height allows (so what is under it stays in view).
+float GrowingViewWidth(float share, float min_width, float max_width);
 /// printf-style formatting into a std::string, for labels built from numbers.
 std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));
+/// Greyed text wrapped at the panel's edge (or the wrap position pushed): a note or a hint that
+/// may be long.
+void HintText(const std::string& text);
 /// A heading with the step's purpose under it.
 void ScreenHeader(const std::string& title, const std::string& purpose);
 
