@@ -38,11 +38,11 @@ std::string SlowTakesWarning(const std::vector<KeptTake>& takes, double step_s) 
   if (slow.empty()) return "";
   std::string list;
   for (size_t i : slow) {
+    const double others = MedianOfOthers(takes, i);
     char part[160];
     std::snprintf(part, sizeof(part), "%s took %.1f s, %.1f times the others' %.1f s",
                   takes[i].name.c_str(), static_cast<double>(takes[i].samples) * step_s,
-                  static_cast<double>(takes[i].samples) / MedianOfOthers(takes, i),
-                  MedianOfOthers(takes, i) * step_s);
+                  static_cast<double>(takes[i].samples) / others, others * step_s);
     list += (list.empty() ? "" : "; ") + std::string(part);
   }
   const bool one = slow.size() == 1;

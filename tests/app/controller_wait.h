@@ -11,7 +11,7 @@
 namespace recon::studio::testing {
 
 /// Polls the controller's snapshots until `done` holds and the controller has settled; fails the
-/// test (and returns the last snapshot) after `timeout_s`.
+/// test (and returns the last snapshot) after `timeout_s`, naming the status and the last error.
 inline ui::StudioSnapshot WaitForSnapshot(
     const StudioController& controller, const std::function<bool(const ui::StudioSnapshot&)>& done,
     double timeout_s = 60) {
@@ -20,7 +20,8 @@ inline ui::StudioSnapshot WaitForSnapshot(
     ui::StudioSnapshot s = controller.Snapshot();
     if (done(s) && controller.Settled()) return s;
     if (std::chrono::steady_clock::now() > deadline) {
-      ADD_FAILURE() << "timed out; status: " << s.status;
+      ADD_FAILURE() << "timed out; status: " << s.status
+                    << (s.errors.empty() ? "" : "; last error: " + s.errors.back());
       return s;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));

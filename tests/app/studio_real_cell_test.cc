@@ -22,6 +22,7 @@
 #include "engine/calib/calibration.h"
 #include "engine/core/error.h"
 #include "engine/store/session.h"
+#include "tests/app/controller_wait.h"
 #include "tests/cell/fake_cell_devices.h"
 
 namespace recon::studio {
@@ -36,17 +37,7 @@ const Eigen::Vector3d kPlateUwb_m(1.25, 0.5, 0.1);
 ui::StudioSnapshot WaitFor(const StudioController& controller,
                            const std::function<bool(const ui::StudioSnapshot&)>& done,
                            double timeout_s = 20) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  for (;;) {
-    ui::StudioSnapshot s = controller.Snapshot();
-    if (done(s) && controller.Settled()) return s;
-    if (std::chrono::steady_clock::now() > deadline) {
-      ADD_FAILURE() << "timed out; status: " << s.status
-                    << (s.errors.empty() ? "" : "; last error: " + s.errors.back());
-      return s;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  return testing::WaitForSnapshot(controller, done, timeout_s);
 }
 
 class StudioRealCellTest : public ::testing::Test {
