@@ -86,6 +86,11 @@ void WriteScreenshot(const recon::RgbImage& image, const std::string& path) {
 void Run(StudioFlags flags) {
   namespace fs = std::filesystem;
   flags.options.real_time = !flags.fast;
+  // A script plays the simulated cell on a clock its frames move: the same session on any
+  // machine, however loaded. A real cell's devices keep their own time.
+  if (!flags.script.empty() && flags.options.cell_profile.empty()) {
+    flags.options.clock = std::make_shared<recon::SteppedClock>();
+  }
   // The desktop window before the controller: its GL context is made before the controller's
   // threads make theirs and destroyed after them (Mesa's llvmpipe has crashed while threads made
   // and dropped contexts side by side, see devices/render/egl_context.cc).
@@ -143,6 +148,10 @@ void Run(StudioFlags flags) {
     driver.SetSettledCheck([&] { return controller.Settled(); });
     driver.SetQuitCheck([&] { return quit; });
     driver.SetSnapshotSource([&] { return controller.Snapshot(); });
+    if (flags.options.clock) {
+      driver.SetClock(flags.options.clock,
+                      [&](recon::SteppedClock::time_point t) { return controller.CaughtUp(t); });
+    }
     if (!flags.screenshots.empty()) {
       fs::create_directories(flags.screenshots);
       driver.SetScreenshotDir(flags.screenshots);

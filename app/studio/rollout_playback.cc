@@ -46,10 +46,10 @@ void RolloutPlayback::Show(int scenario, int frame) {
   playing_ = false;
 }
 
-void RolloutPlayback::SetPlaying(bool playing) {
+void RolloutPlayback::SetPlaying(bool playing, std::chrono::steady_clock::time_point now) {
   if (playing && frame_ >= Frames() - 1) frame_ = 0;
   playing_ = playing && Frames() > 1;
-  next_step_ = std::chrono::steady_clock::now() + kStep;
+  next_step_ = now + kStep;
 }
 
 void RolloutPlayback::Tick(std::chrono::steady_clock::time_point now) {

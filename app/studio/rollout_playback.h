@@ -28,8 +28,9 @@ class RolloutPlayback {
   void Reload();
   /// Shows step `frame` of test scene `scenario` (both clamped to what exists) and pauses.
   void Show(int scenario, int frame);
-  /// Starts or pauses playing at the control rate; playing from the last step starts over.
-  void SetPlaying(bool playing);
+  /// Starts or pauses playing at the control rate from `now`; playing from the last step starts
+  /// over.
+  void SetPlaying(bool playing, std::chrono::steady_clock::time_point now);
   /// Advances a playing playback by one step per control period; stops at the last step.
   void Tick(std::chrono::steady_clock::time_point now);
   bool playing() const { return playing_; }

@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/teach/homing.h"
 #include "engine/teach/session_setup.h"
+#include "engine/teach/take_words.h"
 #include "engine/worlds/ur5_arm.h"
 #include "engine/worlds/world_factory.h"
 
@@ -154,7 +155,7 @@ void StudioCell::Handle(const ui::StudioCommand& command) {
 }
 
 void StudioCell::Tick() {
-  const Clock::time_point now = Clock::now();
+  const Clock::time_point now = Now();
   PollGamepad(now);
   // Before a person's take: the countdown, and meanwhile the arm's return to its home pose,
   // where every take and every trial starts. The take starts once both are over; an arm already
@@ -205,7 +206,7 @@ bool StudioCell::Busy() const {
 }
 
 bool StudioCell::TakeWaiting() const {
-  return recorder_ && recorder_->recording() && (homing_take_ || Clock::now() < take_starts_);
+  return recorder_ && recorder_->recording() && (homing_take_ || Now() < take_starts_);
 }
 
 bool StudioCell::Driving() const {
@@ -309,7 +310,7 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   teleop_input_ = {};
   teleop_command_ = {};
   key_ramp_.Clear();
-  take_starts_ = Clock::now();
+  take_starts_ = Now();
   if (teleop_mode_ != ui::TeleopMode::kScripted) {
     take_starts_ += std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(options_.countdown_s));
@@ -327,7 +328,7 @@ void StudioCell::StartDemo(int number, uint64_t seed) {
   // A simulated scene puts the arm at home itself; a real arm is where the last take left it.
   homing_take_ = teleop_mode_ != ui::TeleopMode::kScripted;
   take_homing_moved_ = false;
-  take_homing_since_ = next_homing_ = Clock::now();
+  take_homing_since_ = next_homing_ = Now();
 }
 
 bool StudioCell::StepTowardHome(const std::array<double, 6>& q_rad, Clock::time_point since,
@@ -378,18 +379,24 @@ void StudioCell::StepTakeHoming(Clock::time_point now) {
 }
 
 void StudioCell::TakeEnded() {
+  const bool scripted = teleop_mode_ == ui::TeleopMode::kScripted;
   // A take that ran out of time with the goal holding (the toast on the plate, let go) is done,
   // wherever the gripper stands.
-  if (teleop_mode_ == ui::TeleopMode::kScripted || world_->DemonstrationDone() ||
-      world_->TaskSucceeded()) {
-    return Commit();
+  const bool done = scripted || world_->DemonstrationDone() || world_->TaskSucceeded();
+  // A person is told what happened in their take: why it is not done, a regrasp, a long
+  // stillness (a take left alone), so that keeping or discarding it is an informed choice.
+  const std::string words = scripted ? "" : teach::TakeWords(*world_, recorder_->episode(), done);
+  if (done) {
+    Commit();
+    if (!words.empty()) status_ += " In it, " + words + ".";
+    return;
   }
   // A person ran out of time: whether an unfinished take is worth keeping is theirs to say.
   Changed();
   pending_take_ =
       "The take reached its " +
       std::to_string(static_cast<int>(world_->EpisodeLength() * world_->StepSeconds())) +
-      " s limit before the task was done";
+      " s limit before the task was done" + (words.empty() ? "" : ": " + words);
   status_ = pending_take_ + ": keep it (as not done) or discard it.";
 }
 

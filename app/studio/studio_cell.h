@@ -54,6 +54,13 @@ class StudioCell {
   void Handle(const ui::StudioCommand& command);
   /// One pass of the cell loop: a recording step, a play sample, the beacons, a finished job.
   void Tick();
+  /// Starts a pass of the cell loop: on a SteppedClock (StudioOptions::clock), Now() is the
+  /// clock's time at this call until the next.
+  void BeginPass() {
+    if (options_.clock) pass_time_ = options_.clock->Now();
+  }
+  /// The studio's time: the pass's on a SteppedClock, the steady clock's otherwise.
+  Clock::time_point Now() const { return options_.clock ? pass_time_ : Clock::now(); }
   /// A recording or a job runs.
   bool Busy() const;
   /// Whether the cell thread itself drives something (a recording stepping the simulation):
@@ -216,6 +223,7 @@ class StudioCell {
   void ShowTrial(ui::StudioSnapshot& s) const;
 
   StudioOptions options_;
+  Clock::time_point pass_time_ = options_.clock ? options_.clock->Now() : Clock::time_point{};
   RecentSessions recent_;
   bool picking_session_ = false;
   std::optional<store::Session> session_;
@@ -246,10 +254,10 @@ class StudioCell {
   RgbImage play_image_;
   uint64_t play_image_frame_ = 0;
   std::vector<float> play_reading_;
-  const Clock::time_point started_ = Clock::now();
-  Clock::time_point next_tick_ = Clock::now();
-  Clock::time_point take_starts_ = Clock::now();  ///< a person's take, after its countdown
-  Clock::time_point next_beacon_ = Clock::now();
+  const Clock::time_point started_ = Now();
+  Clock::time_point next_tick_ = Now();
+  Clock::time_point take_starts_ = Now();  ///< a person's take, after its countdown
+  Clock::time_point next_beacon_ = Now();
   std::vector<float> last_reading_;
   teach::StreamHealth camera_health_{30.0};
   teach::StreamHealth beacon_health_{10.0};

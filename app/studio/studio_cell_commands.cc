@@ -217,7 +217,7 @@ void StudioCell::Apply(const ui::TeleopInput& c) {
   if (teleop_mode_ == ui::TeleopMode::kKeyboard) {
     // Keys are shaped period by period (ShapeKeyboardTeleop): a tap between two ticks still
     // moves a step.
-    const double now = Seconds(Clock::now());
+    const double now = Seconds(Now());
     key_ramp_.Set(0, c.screen_right, now);
     key_ramp_.Set(1, c.screen_up, now);
     key_ramp_.Set(2, c.raise, now);
@@ -256,7 +256,7 @@ void StudioCell::Apply(const ui::OpenSession& c) {
   OpenSessionAt(c.dir);
 }
 
-void StudioCell::Apply(const ui::PlayRollouts& c) { playback_->SetPlaying(c.playing); }
+void StudioCell::Apply(const ui::PlayRollouts& c) { playback_->SetPlaying(c.playing, Now()); }
 
 void StudioCell::Apply(const ui::StartTraining& c) {
   RequireIdle("train");

@@ -52,8 +52,7 @@ void StudioCell::Publish(ui::StudioSnapshot& s) {
   s.pending_take = pending_take_;
   s.take_homing = s.recording && homing_take_;
   if (s.recording) {
-    s.countdown_s =
-        std::max(0.0, std::chrono::duration<double>(take_starts_ - Clock::now()).count());
+    s.countdown_s = std::max(0.0, std::chrono::duration<double>(take_starts_ - Now()).count());
   }
   s.undo_delete = last_deleted_ ? last_deleted_->name : "";
   s.teleop = teleop_mode_;
@@ -141,7 +140,7 @@ void StudioCell::RenderView(ui::StudioSnapshot& s) {
   }
   const ViewSize view{options_.view_width, options_.view_height};
   if (source_->ShowLive(*world_, *session_, last_reading_, wanted, view, s)) {
-    camera_health_.Add(Seconds(Clock::now()));
+    camera_health_.Add(Seconds(Now()));
   }
   // The teacher's 3-D view is the Record screen's only (shadows make it the costliest frame).
   if (current_step_ == teach::Step::kRecord) {
@@ -151,7 +150,7 @@ void StudioCell::RenderView(ui::StudioSnapshot& s) {
 }
 
 void StudioCell::ShowDeviceHealth(ui::StudioSnapshot& s) const {
-  const double now = Seconds(Clock::now());
+  const double now = Seconds(Now());
   const teach::StreamStats camera = camera_health_.Stats(now);
   const teach::StreamStats beacon = beacon_health_.Stats(now);
   const teach::StreamStats arm = arm_health_.Stats(now);
@@ -197,7 +196,7 @@ void StudioCell::ShowPlaySample() {
   ++play_image_frame_;
   play_reading_ = sample->b;
   last_reading_ = sample->b;
-  beacon_health_.Add(Seconds(Clock::now()), last_reading_);
+  beacon_health_.Add(Seconds(Now()), last_reading_);
 }
 
 void StudioCell::ShowPlayback(ui::StudioSnapshot& s) {

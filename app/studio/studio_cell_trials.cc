@@ -126,8 +126,8 @@ void StudioCell::Apply(const ui::RunTrial&) {
   run.phase = ui::TrialPhase::kCountdown;
   run.message.clear();
   // As before a person's take: the teacher steps back from the table first.
-  run.starts = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                  std::chrono::duration<double>(options_.countdown_s));
+  run.starts = Now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(options_.countdown_s));
   status_ = "Trial " + std::to_string(run.number) +
             ": after the countdown the arm returns home, then the policy runs.";
 }
@@ -321,7 +321,7 @@ void StudioCell::ShowTrial(ui::StudioSnapshot& s) const {
     v.layout.push_back(o);
   }
   if (run.phase == ui::TrialPhase::kCountdown) {
-    v.countdown_s = std::max(0.0, std::chrono::duration<double>(run.starts - Clock::now()).count());
+    v.countdown_s = std::max(0.0, std::chrono::duration<double>(run.starts - Now()).count());
   }
   v.homing_progress = run.homing_progress;
   v.step = run.step;

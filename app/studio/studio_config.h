@@ -1,9 +1,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "engine/core/stepped_clock.h"
 
 namespace recon::studio {
 
@@ -28,6 +31,9 @@ struct StudioOptions {
   /// Demonstrations run at the control rate (10 Hz), as a person teaching would see them; off,
   /// they run as fast as the simulation goes (tests, demos).
   bool real_time = true;
+  /// The studio's time: a script's frames move it (SteppedClock), so what a scripted teacher
+  /// does is the same on any machine; null: the steady clock, as a person at the desk needs.
+  std::shared_ptr<SteppedClock> clock;
   /// A person's take (keyboard, gamepad) starts this many seconds after Start, counted down on
   /// screen, so their hands are on the keys when the arm starts listening; 0: at once.
   double countdown_s = 3.0;

@@ -50,8 +50,19 @@ StudioController::~StudioController() {
 
 void StudioController::RunCellThread() {
   constexpr auto kFrame = std::chrono::milliseconds(33);  // camera and snapshot at ~30 Hz
-  auto next_publish = Clock::now();
+  auto next_publish = cell_->Now();
+  Clock::time_point last_pass{};
   while (!stop_) {
+    // One time for the whole pass: on a SteppedClock, what a pass does depends on that time
+    // alone, not on when the clock is moved on meanwhile.
+    cell_->BeginPass();
+    const Clock::time_point now = cell_->Now();
+    if (options_.clock && now == last_pass && cell_->Driving() && Settled()) {
+      // Driving on a clock that has not moved: nothing to step until it does.
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
+      continue;
+    }
+    last_pass = now;
     const std::vector<ui::StudioCommand> commands = commands_.Drain();
     for (const ui::StudioCommand& command : commands) {
       try {
@@ -66,7 +77,7 @@ void StudioController::RunCellThread() {
       cell_->AddError(e.what());
     }
     const bool busy = cell_->Busy();
-    if (Clock::now() >= next_publish || !commands.empty() || busy != published_busy_) {
+    if (now >= next_publish || !commands.empty() || busy != published_busy_) {
       ui::StudioSnapshot fresh;
       try {
         cell_->Publish(fresh);
@@ -77,7 +88,8 @@ void StudioController::RunCellThread() {
         snapshot_.errors = cell_->errors();
         published_busy_ = busy;
         handled_ += commands.size();
-        next_publish = Clock::now() + kFrame;
+        passed_ = now;
+        next_publish = now + kFrame;
         continue;
       }
       // The snapshot, whether anything runs and how many commands it reflects change together,
@@ -86,7 +98,11 @@ void StudioController::RunCellThread() {
       snapshot_ = std::move(fresh);
       published_busy_ = busy;
       handled_ += commands.size();
-      next_publish = Clock::now() + kFrame;
+      next_publish = now + kFrame;
+    }
+    {
+      std::lock_guard<std::mutex> lock(snapshot_mutex_);
+      passed_ = now;
     }
     // A recording steps the simulation from this loop (as fast as it can with --fast); anything
     // else only waits for commands, a job's end or the next frame.
@@ -110,6 +126,11 @@ ui::StudioSnapshot StudioController::Snapshot() const {
 bool StudioController::Idle() const {
   std::lock_guard<std::mutex> lock(snapshot_mutex_);
   return !published_busy_ && handled_ == pushed_;
+}
+
+bool StudioController::CaughtUp(Clock::time_point t) const {
+  std::lock_guard<std::mutex> lock(snapshot_mutex_);
+  return passed_ >= t;
 }
 
 bool StudioController::Settled() const {

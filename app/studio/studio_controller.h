@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -38,6 +39,9 @@ class StudioController {
   bool Idle() const;
   /// Every command pushed so far has been handled and a snapshot showing it published.
   bool Settled() const;
+  /// A pass of the cell loop has run at the studio's time `t` or later (StudioOptions::clock),
+  /// and the snapshot shows it if one was due.
+  bool CaughtUp(std::chrono::steady_clock::time_point t) const;
 
  private:
   void RunCellThread();
@@ -51,6 +55,7 @@ class StudioController {
   bool published_busy_ = false;
   uint64_t pushed_ = 0;
   uint64_t handled_ = 0;
+  std::chrono::steady_clock::time_point passed_{};  ///< the time of the last finished pass
   std::unique_ptr<StudioCell> cell_;
   std::thread cell_thread_;
 };

@@ -53,6 +53,8 @@ class DemoRecorder {
   bool Tick();
   bool recording() const { return recording_; }
   int samples() const { return static_cast<int>(record_.episode.samples.size()); }
+  /// What was recorded so far.
+  const Episode& episode() const { return record_.episode; }
   /// The latest recorded sample (nullptr before the first).
   const Sample* last() const {
     return record_.episode.samples.empty() ? nullptr : &record_.episode.samples.back();

@@ -1,5 +1,7 @@
 #include "engine/worlds/outcome_words.h"
 
+#include <cmath>
+
 namespace recon::worlds {
 
 namespace {
@@ -19,9 +21,14 @@ std::string DescribeFailure(const std::map<std::string, double>& details, bool s
                ? "closed the gripper on nothing, never held the toast"
                : "never picked the toast up";
   }
-  if (Flag(details, "toast_held")) return "still holding the toast at the end";
+  if (Flag(details, "toast_held")) return "kept holding the toast to the end";
+  if (Flag(details, "toast_off_table")) return "dropped the toast off the table";
   if (Flag(details, "grip_nearer_bowl")) return "delivered towards the bowl";
-  return "let the toast go off the plate";
+  const auto to_plate = details.find("toast_to_plate_m");
+  if (to_plate == details.end()) return "let the toast go off the plate";
+  return "let the toast go off the plate, " +
+         std::to_string(static_cast<int>(std::lround(to_plate->second * 100))) +
+         " cm from its middle";
 }
 
 }  // namespace recon::worlds

@@ -36,6 +36,8 @@ constexpr int kPlateSides = 2;
 constexpr double kToastX = 0.33, kToastJitter = 0.0;
 // A slice of toast: 10 x 10 x 1.6 cm (assets/mjcf/tabletop.xml).
 constexpr double kToastRestZ = 0.008;
+// How far below its resting height the toast's middle must be to have left the table.
+constexpr double kToastOffTableDrop_m = 0.05;
 constexpr double kBowlClearPlate = 0.22, kBowlClearToast = 0.16, kBowlClearBeacon = 0.12;
 Eigen::Vector3d Vec(const mjtNum* p) { return {p[0], p[1], p[2]}; }
 
@@ -196,6 +198,8 @@ void Tabletop::FinishReset() {
   grasped_ = false;
   closest_approach_m_ = (arm_->GripPosition() - ToastPosition()).norm();
   closes_on_nothing_ = 0;
+  grasps_ = 0;
+  holding_toast_ = false;
   CheckReachable();
   Render();
 }
@@ -278,6 +282,8 @@ void Tabletop::AdvanceFrom(bool was_closed) {
 
 void Tabletop::TrackGrasp(bool was_closed) {
   const bool holding = arm_->HeldObject() == toast_body_;
+  if (holding && !holding_toast_) ++grasps_;
+  holding_toast_ = holding;
   if (holding) {
     grasped_ = true;
     return;
@@ -355,7 +361,11 @@ std::map<std::string, double> Tabletop::OutcomeDetails() const {
       {"toast_to_bowl_m", ToastToBowlDistance()},
       {"grasped", grasped_ ? 1.0 : 0.0},
       {"closest_approach_m", closest_approach_m_},
-      {"closes_on_nothing", static_cast<double>(closes_on_nothing_)}};
+      {"closes_on_nothing", static_cast<double>(closes_on_nothing_)},
+      {"grasps", static_cast<double>(grasps_)},
+      // Resting on the table its middle is kToastRestZ up; fallen off, far below.
+      {"toast_off_table", ToastPosition().z() < kToastRestZ - kToastOffTableDrop_m ? 1.0 : 0.0},
+      {"toast_to_plate_m", EpisodeMetric()}};
 }
 
 std::map<std::string, std::array<double, 2>> Tabletop::ObjectLayout() const {

@@ -113,7 +113,9 @@ class Tabletop : public World {
   /// the gripper at the end), "grip_nearer_bowl" (the gripper ended nearer the bowl than the
   /// plate: the paper's Baseline failure), "toast_to_bowl_m", "grasped" (the toast was held at
   /// some point), "closest_approach_m" (of the grip point to the toast before a grasp) and
-  /// "closes_on_nothing" (the gripper shut without the toast before any grasp).
+  /// "closes_on_nothing" (the gripper shut without the toast before any grasp), "grasps" (how
+  /// often the toast was picked up: 2 or more is a regrasp), "toast_off_table" (it fell below
+  /// the table's top) and "toast_to_plate_m".
   std::map<std::string, double> OutcomeDetails() const override;
   /// The plate, the bowl and the toast.
   std::map<std::string, std::array<double, 2>> ObjectLayout() const override;
@@ -215,6 +217,8 @@ class Tabletop : public World {
   bool grasped_ = false;
   double closest_approach_m_ = 0.0;
   int closes_on_nothing_ = 0;
+  int grasps_ = 0;              ///< times the toast went from free to held
+  bool holding_toast_ = false;  ///< at the last period's end
 };
 
 }  // namespace recon::worlds

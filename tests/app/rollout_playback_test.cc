@@ -108,12 +108,12 @@ TEST_F(RolloutPlaybackTest, StepsClampsPlaysAndDrawsBothMethodsOnTheSameScene) {
   EXPECT_EQ(views[0].frame, 4);
 
   // Playing from the last step starts over, advances one step per 100 ms and stops at the end.
-  playback.SetPlaying(true);
+  const auto now = std::chrono::steady_clock::now();
+  playback.SetPlaying(true, now);
   EXPECT_TRUE(playback.playing());
   views = Views();
   playback.Fill(views, *renderer, 320, 240);
   EXPECT_EQ(views[0].frame, 0);
-  auto now = std::chrono::steady_clock::now();
   playback.Tick(now);  // too early
   views = Views();
   playback.Fill(views, *renderer, 320, 240);

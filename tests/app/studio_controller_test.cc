@@ -434,6 +434,9 @@ TEST_F(StudioControllerTest, AKeyboardTakeAtTheTimeLimitWaitsForTheTeacher) {
   ui::StudioSnapshot s = WaitFor(
       controller, [](const auto& now) { return !now.pending_take.empty(); }, 120);
   EXPECT_THAT(s.pending_take, HasSubstr("reached its 20 s limit before the task was done"));
+  // No key was pressed: it says what became of the toast and that the arm stood still.
+  EXPECT_THAT(s.pending_take, HasSubstr("it never picked the toast up"));
+  EXPECT_THAT(s.pending_take, HasSubstr("the arm stood still for 20.0 s"));
   EXPECT_FALSE(s.recording);
   EXPECT_TRUE(s.episodes.empty()) << "nothing is committed unasked";
   controller.Push(ui::DiscardRecording{});

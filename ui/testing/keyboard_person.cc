@@ -91,7 +91,7 @@ void KeyboardPerson::Enter(Phase phase) {
   axes_[0] = axes_[1] = Axis{};
   settled_frames_ = 0;
   space_sent_ = false;
-  phase_started_ = Clock::now();
+  phase_started_ = now_;
   if (pace_.ideal()) return;
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   lag_s_ = pace_.reaction_min_s + (pace_.reaction_max_s - pace_.reaction_min_s) * uniform(rng_);
@@ -158,7 +158,7 @@ void KeyboardPerson::Aim(double scale) {
 }
 
 FrameInput KeyboardPerson::Delayed(FrameInput decision) {
-  const Clock::time_point now = Clock::now();
+  const Clock::time_point now = now_;
   decisions_.push_back({now, std::move(decision)});
   FrameInput keys;
   const Clock::time_point due =
@@ -179,7 +179,7 @@ int KeyboardPerson::AxisKey(Axis& axis, float error, float tolerance) {
   if (pace_.ideal()) return want;
   // A person who lags sees an overshoot late; after the first, they tap: one press, then wait
   // for the view to show where it went (a reaction time) before the next.
-  const Clock::time_point now = Clock::now();
+  const Clock::time_point now = now_;
   if (want != 0 && axis.last_want != 0 && want != axis.last_want) axis.tapping = true;
   if (want != 0) axis.last_want = want;
   if (want == 0 || !axis.tapping) return want;
@@ -212,10 +212,13 @@ bool KeyboardPerson::Steer(const StudioSnapshot& s, const Target& target, FrameI
   return settled_frames_ >= kSettledViews;
 }
 
-FrameInput KeyboardPerson::Next(const StudioSnapshot& s) {
+FrameInput KeyboardPerson::Next(const StudioSnapshot& s, Clock::time_point now) {
+  now_ = now;
+  if (!looked_yet_) phase_started_ = now;
+  looked_yet_ = true;
   if (pace_.ideal()) return Decide(s);
   FrameInput decision;
-  if (Clock::now() >= paused_until_ || phase_ == Phase::kWaiting) {
+  if (now_ >= paused_until_ || phase_ == Phase::kWaiting) {
     decision = Decide(s);
   } else {
     last_view_ = s.teacher_view.frame;  // looking, the hands still
@@ -231,7 +234,7 @@ FrameInput KeyboardPerson::Decide(const StudioSnapshot& s) {
   FrameInput keys;
   const float height = s.grip_m[2];
   const float grasp_top = s.grip.grasp_max_m;
-  const double in_phase_s = std::chrono::duration<double>(Clock::now() - phase_started_).count();
+  const double in_phase_s = std::chrono::duration<double>(now_ - phase_started_).count();
   if (phase_ != Phase::kWaiting && phase_ != Phase::kLost && phase_ != Phase::kFinished &&
       !s.recording) {
     ended_in_ = phase_;

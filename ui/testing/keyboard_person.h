@@ -62,8 +62,11 @@ class KeyboardPerson {
 
   explicit KeyboardPerson(const PersonPace& pace = {});
 
-  /// The keys for the next frame, given what the screen shows now.
-  FrameInput Next(const StudioSnapshot& s);
+  using Clock = std::chrono::steady_clock;
+
+  /// The keys for the next frame, given what the screen shows at `now` (the studio's time: a
+  /// reaction time or a pause lasts that long on the studio's clock).
+  FrameInput Next(const StudioSnapshot& s, Clock::time_point now = Clock::now());
 
   Phase phase() const { return phase_; }
   /// How many times it closed the gripper over the toast.
@@ -72,7 +75,6 @@ class KeyboardPerson {
   std::string Describe() const;
 
  private:
-  using Clock = std::chrono::steady_clock;
   struct Target {
     float x = 0, y = 0;  ///< in the view's pixels
     float tolerance_x = 0, tolerance_y = 0;
@@ -105,7 +107,9 @@ class KeyboardPerson {
   int settled_frames_ = 0;   ///< consecutive new views with the spot on the target
   uint64_t last_view_ = 0;   ///< the teacher view's frame number seen last
   bool space_sent_ = false;  ///< Space pressed in this phase
-  Clock::time_point phase_started_ = Clock::now();
+  Clock::time_point phase_started_{};
+  Clock::time_point now_{};  ///< the time of the frame being answered
+  bool looked_yet_ = false;
   std::string lost_;
 
   Phase ended_in_ = Phase::kFinished;  ///< what it was doing when the take ended

@@ -33,6 +33,40 @@ void UiDriver::Frame(const FrameInput& input) {
     WidgetRegistry::ForThisThread().BeginFrame();
     draw_();
   });
+  if (!clock_) return;
+  // What this frame sent is taken in at the time it showed; only then does time move on, and
+  // the next frame shows the application as it is at the new time.
+  WaitSettled("a frame");
+  clock_->Advance(kFrameStep);
+  const SteppedClock::time_point now = clock_->Now();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!caught_up_(now)) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw UserError("the studio did not catch up with its clock within 60 s");
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
+void UiDriver::SetClock(std::shared_ptr<SteppedClock> clock,
+                        std::function<bool(SteppedClock::time_point)> caught_up) {
+  clock_ = std::move(clock);
+  caught_up_ = std::move(caught_up);
+}
+
+SteppedClock::time_point UiDriver::Now() const {
+  return clock_ ? clock_->Now() : std::chrono::steady_clock::now();
+}
+
+void UiDriver::WaitSettled(const std::string& what) {
+  if (!settled_) return;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!settled_()) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw UserError(what + " was not taken in within 60 s");
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
 }
 
 void UiDriver::WaitFrames(int frames) {
@@ -164,13 +198,7 @@ void UiDriver::Click(const std::string& label) {
   const WidgetRect rect = Locate(label);
   ClickAt(rect.CentreX(), rect.CentreY());
   if (settled_) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (!settled_()) {
-      if (std::chrono::steady_clock::now() > deadline) {
-        throw UserError("clicking '" + label + "' was not taken in within 60 s");
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    WaitSettled("clicking '" + label + "'");
     WaitFrames(2);  // draw what the application now shows
   }
 }
@@ -197,18 +225,16 @@ void UiDriver::Hold(int imgui_key, double seconds) {
   input.mouse_x = mouse_x_;
   input.mouse_y = mouse_y_;
   input.keys_down.push_back(imgui_key);
-  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  const auto until = Now() + std::chrono::duration_cast<SteppedClock::duration>(
+                                 std::chrono::duration<double>(seconds));
   do {
     Frame(input);
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  } while (std::chrono::steady_clock::now() < until);
+    if (!clock_) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  } while (Now() < until);
   WaitFrames(1);  // released
   if (settled_) {
     // What the key sent must be taken in before the next line acts on its effect.
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (!settled_() && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
+    WaitSettled("holding a key");
     WaitFrames(2);
   }
 }
@@ -223,21 +249,23 @@ KeyboardPerson UiDriver::KeyboardTake(double timeout_s, const PersonPace& pace) 
         "recording first)");
   }
   KeyboardPerson person(pace);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = Now() + std::chrono::duration_cast<SteppedClock::duration>(
+                                    std::chrono::duration<double>(timeout_s));
   while (person.phase() != KeyboardPerson::Phase::kFinished) {
     if (person.phase() == KeyboardPerson::Phase::kLost) {
       throw UserError("keyboard-take: the scripted person gave up: " + person.Describe());
     }
-    if (std::chrono::steady_clock::now() > deadline) {
+    if (Now() > deadline) {
       throw UserError("keyboard-take: the take still runs after " +
                       std::to_string(static_cast<int>(timeout_s)) + " s; " + person.Describe());
     }
-    FrameInput keys = person.Next(snapshot_());
+    FrameInput keys = person.Next(snapshot_(), Now());
     keys.mouse_x = mouse_x_;
     keys.mouse_y = mouse_y_;
     Frame(keys);
-    // A person looks about 50 times a second at most; the arm moves 10 times a second.
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    // A person looks about 50 times a second at most; the arm moves 10 times a second. (On a
+    // clock, each frame is a 50th of a second of the studio's time.)
+    if (!clock_) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   WaitFrames(3);  // release the keys and show what became of the take
   return person;
@@ -343,11 +371,11 @@ void UiDriver::RunStep(const ScriptStep& step) {
       WaitFrames(step.frames);
       break;
     case ScriptStep::Verb::kSleep: {
-      const auto until =
-          std::chrono::steady_clock::now() + std::chrono::duration<double>(step.seconds);
-      while (std::chrono::steady_clock::now() < until) {
+      const auto until = Now() + std::chrono::duration_cast<SteppedClock::duration>(
+                                     std::chrono::duration<double>(step.seconds));
+      while (Now() < until) {
         WaitFrames(1);
-        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        if (!clock_) std::this_thread::sleep_for(std::chrono::milliseconds(30));
       }
       break;
     }

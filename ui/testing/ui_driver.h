@@ -1,10 +1,13 @@
 #pragma once
 
+#include <chrono>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "engine/core/image.h"
+#include "engine/core/stepped_clock.h"
 #include "ui/platform/headless_window.h"
 #include "ui/studio/studio_snapshot.h"
 #include "ui/testing/keyboard_person.h"
@@ -21,7 +24,9 @@ class UiDriver {
   /// `draw` issues the whole window's ImGui calls for one frame (it is called once per frame).
   UiDriver(HeadlessWindow& window, std::function<void()> draw);
 
-  /// Runs one frame with `input`.
+  /// Runs one frame with `input`. With a clock (SetClock), the frame then moves the clock on by
+  /// kFrameStep once the application has taken in what the frame sent, and waits for it to
+  /// catch up.
   void Frame(const FrameInput& input = {});
   void WaitFrames(int frames);
   /// Moves the pointer to the widget labelled `label` and clicks it (hover, press, release).
@@ -43,7 +48,8 @@ class UiDriver {
   void Type(const std::string& text);
   /// Presses and releases a key (an ImGuiKey value).
   void Press(int imgui_key);
-  /// Holds a key (an ImGuiKey value) down for `seconds` of wall time, drawing frames meanwhile,
+  /// Holds a key (an ImGuiKey value) down for `seconds` (of the clock's time), drawing frames
+  /// meanwhile,
   /// then releases it: what a teacher does with an arrow key to drive the arm.
   void Hold(int imgui_key, double seconds);
   /// Scrolls the panels holding the widget labelled `label` until all of it is in view, as a
@@ -63,6 +69,13 @@ class UiDriver {
   void SetQuitCheck(std::function<bool()> quit) { quit_ = std::move(quit); }
   /// What `wait-idle` waits for (e.g. "the studio's controller has nothing running").
   void SetIdleCheck(std::function<bool()> idle) { idle_ = std::move(idle); }
+  /// Plays the application on `clock`: each frame moves it kFrameStep on, then waits (60 s of
+  /// wall time at most) until `caught_up(time)` says the application has run at that time. What
+  /// a script does then depends on its frames only, never on how fast the machine is.
+  void SetClock(std::shared_ptr<SteppedClock> clock,
+                std::function<bool(SteppedClock::time_point)> caught_up);
+  /// A frame's studio time on a clock: a 50 Hz display, five frames to a control period.
+  static constexpr std::chrono::milliseconds kFrameStep{20};
   /// What the screens show now (the application's latest snapshot), for the scripted person.
   void SetSnapshotSource(std::function<StudioSnapshot()> source) { snapshot_ = std::move(source); }
   /// Gives the keyboard take that has just been started (on the Record screen, Keyboard chosen)
@@ -88,7 +101,7 @@ class UiDriver {
 
   /// Runs a script, one command per line: `click <label>`, `type <text>`, `press <key>`
   /// (enter, tab, escape, backspace, space, up, down, left, right, pageup, pagedown),
-  /// `hold <key> <seconds>`, `wait <frames>`, `sleep <seconds>` (frames for that wall time),
+  /// `hold <key> <seconds>`, `wait <frames>`, `sleep <seconds>` (frames for that long),
   /// `wait-idle [seconds]`, `keyboard-take [seconds]`, `screenshot <file.png>` (inside the
   /// screenshot folder); `#` starts a comment. The whole script is checked before its first line
   /// runs (ParseUiScript); every error names the script and line.
@@ -99,6 +112,10 @@ class UiDriver {
   /// Where the widget labelled `label` was drawn; UserError when it was not or is disabled.
   WidgetRect Locate(const std::string& label, bool enabled_only = true);
   void Hover(float x, float y, bool down);
+  /// The application's time: the clock's if one is set, the steady clock's otherwise.
+  SteppedClock::time_point Now() const;
+  /// Waits until the application has taken in every command sent (the settled check).
+  void WaitSettled(const std::string& what);
 
   HeadlessWindow& window_;
   std::function<void()> draw_;
@@ -109,6 +126,8 @@ class UiDriver {
   std::function<bool()> quit_;
   std::function<StudioSnapshot()> snapshot_;
   std::string screenshot_dir_;
+  std::shared_ptr<SteppedClock> clock_;
+  std::function<bool(SteppedClock::time_point)> caught_up_;
 };
 
 }  // namespace recon::ui
