@@ -191,6 +191,13 @@ std::string SessionInfoText(const store::Session& session, const json& info,
         << Format("%.1f", ledger["beacon_placements_s"]) << " s; Baseline "
         << Format("%.1f", ledger["baseline_total_s"]) << " s vs RECON (Play) "
         << Format("%.1f", ledger["recon_play_total_s"]) << " s\n";
+    // What the kept takes leave out: a person's discarded takes and countdowns.
+    const int discarded = ledger["discarded_takes"].get<int>();
+    out << "                  everything the teacher spent: "
+        << Format("%.1f", ledger["teacher_total_s"]) << " s, with " << discarded
+        << (discarded == 1 ? " take" : " takes") << " discarded or recorded over ("
+        << Format("%.1f", ledger["discarded_s"]) << " s) and countdowns and waits ("
+        << Format("%.1f", ledger["countdowns_s"]) << " s)\n";
   }
   if (info["calibration"].is_null()) {
     out << "  calibration:    none\n";

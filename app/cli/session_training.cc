@@ -133,6 +133,7 @@ store::TrainingRecord TrainSessionMethod(
   }
   learn::NetworkConfig network = recipe.network;
   network.feature_dim = flags.feature_dim;
+  if (flags.action_chunk != 0) network.action_chunk = flags.action_chunk;
   learn::TrainConfig train = recipe.train;
   train.method = learn::ParseMethod(method);
   train.loss = learn::ParseLossKind(flags.loss);
@@ -197,6 +198,7 @@ store::TrainingRecord TrainSessionMethod(
   record.batch = flags.batch;
   record.learning_rate = train.learning_rate;
   record.feature_dim = flags.feature_dim;
+  record.action_chunk = network.action_chunk;
   record.play_consistency = train.play_consistency;
   record.nll_min_std = train.nll_min_std;
   record.action_min_std = train.action_min_std;

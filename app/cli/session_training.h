@@ -27,6 +27,9 @@ struct SessionTrainingOptions {
   /// Train on a person's pauses too; by default the world's recipe leaves them out
   /// (WorldRecipe::pause_motion).
   bool keep_pauses = false;
+  /// Actions predicted at once (ACT); 0: the recipe's (chunks of 20 for a person's takes on the
+  /// tabletop, 10 for the scripted teacher's).
+  int action_chunk = 0;
 };
 
 /// Where a training run is, reported every few steps.

@@ -37,6 +37,7 @@ struct TrainFlags {
   bool no_play = false;
   bool include_bad = false;
   bool keep_pauses = false;
+  int action_chunk = 0;  ///< 0: the recipe's
 };
 
 void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
@@ -63,6 +64,7 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
   options.use_play = !flags.no_play;
   options.include_bad = flags.include_bad;
   options.keep_pauses = flags.keep_pauses;
+  options.action_chunk = flags.action_chunk;
   // Every episode any method will read is read once before the first checkpoint is replaced: a
   // damaged play chunk must not surface after the Baseline's checkpoint was already rewritten.
   {
@@ -290,6 +292,11 @@ void AddTrainCommands(CLI::App& app, const GlobalOptions& global) {
   train->add_flag("--keep-pauses", flags->keep_pauses,
                   "also train on a person's pauses (commands that move nothing and change "
                   "nothing), which the tabletop's recipe leaves out");
+  train
+      ->add_option("--action-chunk", flags->action_chunk,
+                   "actions predicted at once and ensembled over steps (ACT; 1 = off; default: "
+                   "the recipe's: 20 for a person's takes on the tabletop, 10 otherwise)")
+      ->check(WholeBetween(1, 100));
   train->callback([flags, &global] { RunTrain(*flags, global); });
 
   auto eval_flags = std::make_shared<EvalFlags>();

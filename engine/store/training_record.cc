@@ -88,6 +88,8 @@ json TrainingRecordToJson(const TrainingRecord& r) {
                             {"use_play", r.trained_on->use_play}};
   }
   if (r.model_id) record["model_id"] = *r.model_id;
+  // Only where known: a record written before it was kept reads and writes back as it was.
+  if (r.action_chunk > 0) record["action_chunk"] = r.action_chunk;
   return record;
 }
 
@@ -112,6 +114,7 @@ TrainingRecord TrainingRecordFromJson(const json& value, const std::string& sour
   r.batch = static_cast<int>(top.OptionalInteger("batch", 0));
   r.learning_rate = top.OptionalNumberOrNan("learning_rate", 0.0);
   r.feature_dim = static_cast<int>(top.OptionalInteger("feature_dim", 0));
+  r.action_chunk = static_cast<int>(top.OptionalInteger("action_chunk", 0));
   r.play_consistency = top.OptionalNumberOrNan("play_consistency", 0.0);
   r.nll_min_std = top.OptionalNumberOrNan("nll_min_std", 0.0);
   r.action_min_std = top.OptionalNumbers("action_min_std");

@@ -70,6 +70,7 @@ struct TrainingRecord {
   int batch = 0;
   double learning_rate = 0;
   int feature_dim = 0;
+  int action_chunk = 0;  ///< actions predicted at once (0: a record written before it was kept)
   double play_consistency = 0;
   double nll_min_std = 0;
   std::vector<double> action_min_std;

@@ -113,6 +113,7 @@ std::vector<OptionCase> NumericOptions() {
       {train, "--lr", false},
       {train, "--feature-dim", true},
       {train, "--seed", true},
+      {train, "--action-chunk", true},
       {eval, "--tests", true},
       {eval, "--seed", true},
       {eval + "--probe ", "--grid", true},

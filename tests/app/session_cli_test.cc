@@ -327,6 +327,21 @@ TEST_F(SessionCliTest, TrainEvalAndReport) {
     if (entry.path().extension() == ".png" && entry.file_size() > 0) ++pngs;
   }
   EXPECT_GT(pngs, 0);
+
+  // The recipe's chunk length is recorded with each model, and --action-chunk overrides it; the
+  // model rolls out with its own.
+  const int recipe_chunk = ReadJson(session / "training" / "baseline.json")["action_chunk"];
+  EXPECT_GE(recipe_chunk, 1);
+  const int other_chunk = recipe_chunk + 2;
+  r = RunRecon("train --session " + session.string() + " --methods baseline --steps 50 " +
+               "--action-chunk " + std::to_string(other_chunk));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(ReadJson(session / "training" / "baseline.json")["action_chunk"], other_chunk);
+  r = RunRecon("eval --session " + session.string() + " --methods baseline --tests 1");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = RunRecon("train --session " + session.string() + " --action-chunk 0");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--action-chunk"));
 }
 
 // The methods train side by side; each model is the one it would be trained alone.

@@ -17,6 +17,7 @@
 #include <functional>
 #include <thread>
 
+#include "app/cli/session_summary.h"
 #include "app/cli/session_world.h"
 #include "devices/render/mujoco_renderer.h"
 #include "engine/core/error.h"
@@ -442,6 +443,13 @@ TEST_F(StudioControllerTest, AKeyboardTakeAtTheTimeLimitWaitsForTheTeacher) {
   controller.Push(ui::DiscardRecording{});
   s = WaitFor(controller, [](const auto& now) { return now.pending_take.empty(); });
   EXPECT_TRUE(s.episodes.empty());
+  // `recon session info` counts the discarded take among what the teacher spent.
+  const store::Session session =
+      store::Session::Open((dir_ / "session").string(), store::Session::Access::kReadOnly);
+  const cli::SessionResults results = cli::ReadSessionResults(session);
+  const std::string info =
+      cli::SessionInfoText(session, cli::SessionInfoJson(session, results), results);
+  EXPECT_THAT(info, HasSubstr("with 1 take discarded or recorded over (20.0 s)")) << info;
 }
 
 // Delete is undoable: the episode comes back from the trash with its mark.

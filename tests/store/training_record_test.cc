@@ -130,6 +130,12 @@ TEST(TrainingRecordTest, ARecordReadsBackAsItWasWritten) {
   EXPECT_TRUE(std::isnan(back.history.total_loss[1]));
   EXPECT_EQ(back.history.total_loss[0], 3.0);
   EXPECT_EQ(all.at("recon"), written);
+
+  // The chunk length a model was trained with, where known, is kept.
+  TrainingRecord chunked = FullRecord();
+  chunked.action_chunk = 20;
+  WriteTrainingRecord(session.TrainingRecordPath("recon"), chunked);
+  EXPECT_EQ(ReadTrainingRecord(session, "recon")->action_chunk, 20);
 }
 
 TEST(TrainingRecordTest, TheFileIsByteForByteWhatTheUntypedRecordWas) {

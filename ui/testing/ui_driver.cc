@@ -90,12 +90,12 @@ namespace {
 
 /// All of it in view, or, for one larger than the view (a wide table's row), its middle.
 bool InView(const WidgetPlacement& p) {
-  constexpr float kSlack = 1.0f;
+  constexpr float kEdgeSlack_px = 1.0f;
   const auto fits = [&](float min, float max, float view_min, float view_max) {
     if (max - min > view_max - view_min) {
       return (min + max) / 2 >= view_min && (min + max) / 2 <= view_max;
     }
-    return min >= view_min - kSlack && max <= view_max + kSlack;
+    return min >= view_min - kEdgeSlack_px && max <= view_max + kEdgeSlack_px;
   };
   return fits(p.rect.min_x, p.rect.max_x, p.panel_view.min_x, p.panel_view.max_x) &&
          fits(p.rect.min_y, p.rect.max_y, p.panel_view.min_y, p.panel_view.max_y);
