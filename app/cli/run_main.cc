@@ -35,6 +35,11 @@ int RunMain(CLI::App& app, int argc, char** argv, const char* program,
   } catch (const UserError& e) {
     std::fprintf(stderr, "\n%s: error: %s\n", program, e.what());
     return 2;
+  } catch (const DivergenceError& e) {
+    // A learning rate (or data) the training could not follow: the message says which step and
+    // what to try; nothing was saved from the run that diverged.
+    std::fprintf(stderr, "\n%s: error: %s\n", program, e.what());
+    return 2;
   } catch (const std::filesystem::filesystem_error& e) {
     // The file system refused a path (a link loop, a name too long, a folder where a file
     // should be): a fault of what is on disk, said with the path, not a defect of the program.

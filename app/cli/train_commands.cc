@@ -131,7 +131,12 @@ void RunTrain(const TrainFlags& flags, const GlobalOptions& global) {
         flags.session.c_str(), record.checkpoint.c_str());
   }
   std::fflush(stdout);
-  RethrowFirst(errors);
+  try {
+    RethrowFirst(errors);
+  } catch (const DivergenceError& e) {
+    // The learning rate is the user's to lower: say with which option.
+    throw UserError(std::string(e.what()) + " with --lr");
+  }
 }
 
 struct EvalFlags {

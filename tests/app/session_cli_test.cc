@@ -342,6 +342,15 @@ TEST_F(SessionCliTest, TrainEvalAndReport) {
   r = RunRecon("train --session " + session.string() + " --action-chunk 0");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_THAT(r.output, HasSubstr("--action-chunk"));
+
+  // A learning rate the training cannot follow is the user's to lower, said as such; the models
+  // trained before stay.
+  const std::string baseline_model = ReadBytes(session / "checkpoints" / "baseline.ckpt");
+  r = RunRecon("train --session " + session.string() + " --steps 20 --lr 10");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("try a lower learning rate (now 10) with --lr"));
+  EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
+  EXPECT_EQ(ReadBytes(session / "checkpoints" / "baseline.ckpt"), baseline_model);
 }
 
 // The methods train side by side; each model is the one it would be trained alone.
