@@ -39,11 +39,13 @@ void UiDriver::Frame(const FrameInput& input) {
   WaitSettled("a frame");
   clock_->Advance(kFrameStep);
   const SteppedClock::time_point now = clock_->Now();
+  WaitUntil([&] { return caught_up_(now); }, "the studio did not catch up with its clock");
+}
+
+void UiDriver::WaitUntil(const std::function<bool()>& done, const std::string& failure) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!caught_up_(now)) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      throw UserError("the studio did not catch up with its clock within 60 s");
-    }
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) throw UserError(failure + " within 60 s");
     std::this_thread::sleep_for(std::chrono::microseconds(200));
   }
 }
@@ -59,14 +61,7 @@ SteppedClock::time_point UiDriver::Now() const {
 }
 
 void UiDriver::WaitSettled(const std::string& what) {
-  if (!settled_) return;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!settled_()) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      throw UserError(what + " was not taken in within 60 s");
-    }
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
+  if (settled_) WaitUntil(settled_, what + " was not taken in");
 }
 
 void UiDriver::WaitFrames(int frames) {

@@ -116,6 +116,8 @@ class UiDriver {
   SteppedClock::time_point Now() const;
   /// Waits until the application has taken in every command sent (the settled check).
   void WaitSettled(const std::string& what);
+  /// Waits (wall time, 60 s at most) until `done`; UserError "<failure> within 60 s" after.
+  static void WaitUntil(const std::function<bool()>& done, const std::string& failure);
 
   HeadlessWindow& window_;
   std::function<void()> draw_;
