@@ -160,20 +160,21 @@ store::TrainingRecord TrainSessionMethod(
     sums.play_loss += s.play_loss;
     sums.total_loss += s.total_loss;
     sums.consistency_loss += s.consistency_loss;
-    if (++count == window) {
+    progress.step = s.step + 1;
+    progress.curve_point = ++count == window;
+    if (progress.curve_point) {
       history.Append(s.step + 1 - window / 2,
                      {sums.action_loss / count, sums.beacon_loss / count, sums.play_loss / count,
                       sums.consistency_loss / count, sums.total_loss / count});
       count = 0;
       sums = {};
-      progress.step = s.step + 1;
       progress.latest = s;
       progress.latest.action_loss = static_cast<float>(history.action_loss.back());
       progress.latest.beacon_loss = static_cast<float>(history.beacon_loss.back());
       progress.latest.play_loss = static_cast<float>(history.play_loss.back());
       progress.latest.total_loss = static_cast<float>(history.total_loss.back());
-      if (on_progress) on_progress(progress);
     }
+    if (on_progress) on_progress(progress);
   });
   const learn::TrainResult result = trainer.Train(cancel);
   if (result.cancelled) {

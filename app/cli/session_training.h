@@ -38,6 +38,9 @@ struct TrainingProgress {
   std::string label;   ///< "Baseline", "RECON (Play)"
   int step = 0;
   int steps = 0;
+  /// Reported after every step, so a progress bar moves however long the run; the losses are
+  /// a new point of the loss curve only where `curve_point` holds (one per window of steps).
+  bool curve_point = false;
   learn::StepMetrics latest;  ///< losses averaged over the last window
 };
 

@@ -55,6 +55,7 @@ std::string TrainMethods(JobThread& jobs, const store::Session& session,
               view.step = p.step;
               view.seconds =
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+              if (!p.curve_point) return;
               view.loss_step.push_back(static_cast<float>(p.step));
               view.action_loss.push_back(p.latest.action_loss);
               if (methods[i] == teach::kReconMethod) {

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <functional>
+#include <string>
 #include <thread>
 
 #include "app/studio/studio_controller.h"
@@ -20,7 +21,12 @@ inline ui::StudioSnapshot WaitForSnapshot(
     ui::StudioSnapshot s = controller.Snapshot();
     if (done(s) && controller.Settled()) return s;
     if (std::chrono::steady_clock::now() > deadline) {
-      ADD_FAILURE() << "timed out; status: " << s.status
+      std::string training;
+      for (const ui::TrainingView& view : s.training) {
+        training += "; " + view.label + " at step " + std::to_string(view.step) + " of " +
+                    std::to_string(view.steps) + (view.running ? " (running)" : "");
+      }
+      ADD_FAILURE() << "timed out after " << timeout_s << " s; status: " << s.status << training
                     << (s.errors.empty() ? "" : "; last error: " + s.errors.back());
       return s;
     }

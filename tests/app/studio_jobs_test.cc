@@ -58,6 +58,32 @@ TEST(StudioJobsTest, BothMethodsTrainSideBySideAndBothAreSaved) {
   EXPECT_TRUE(views[0].beacon_loss.empty());
 }
 
+// A progress bar moves at every step, however long the run, while the loss curve keeps one
+// point per window of steps (a million-step run would otherwise show step 0 for 5,000 steps).
+TEST(StudioJobsTest, ProgressComesEveryStepAndTheCurveOncePerWindow) {
+  const fs::path dir = RecordedSession("progress");
+  const store::Session session = store::Session::Open(dir.string());
+  cli::SessionTrainingOptions options = QuickTraining(session);
+  options.steps = 400;  // a window of 2 steps for the curve's 200 points
+  std::vector<int> steps;
+  int curve_points = 0;
+  const store::TrainingRecord record =
+      cli::TrainSessionMethod(session, "baseline", options, [&](const cli::TrainingProgress& p) {
+        if (p.step == 1) curve_points = 0;  // a restart (the authors' rule) begins a new curve
+        steps.push_back(p.step);
+        curve_points += p.curve_point ? 1 : 0;
+      });
+  ASSERT_FALSE(steps.empty());
+  EXPECT_EQ(steps.back(), 400);
+  for (size_t i = 1; i < steps.size(); ++i) {
+    // Each step once, in order, or 1 where a restart begins again.
+    EXPECT_TRUE(steps[i] == steps[i - 1] + 1 || steps[i] == 1)
+        << "step " << steps[i] << " after " << steps[i - 1];
+  }
+  EXPECT_EQ(steps.size(), static_cast<size_t>(400 * record.attempts));
+  EXPECT_EQ(curve_points, 200);
+}
+
 TEST(StudioJobsTest, AFailingMethodIsReportedAndTheOtherKeepsItsCheckpoint) {
   const fs::path dir = RecordedSession("one_fails");
   const store::Session session = store::Session::Open(dir.string());
