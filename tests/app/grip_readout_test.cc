@@ -50,8 +50,9 @@ class GripReadoutTest : public ::testing::Test {
       world_->Step(teach::CartesianTeleopAction(*world_, command));
     }
   }
-  ui::GripReadout Read() const {
+  ui::GripReadout Read(ui::TeleopMode teleop = ui::TeleopMode::kKeyboard) const {
     ui::StudioSnapshot s;
+    s.teleop = teleop;
     s.grip = GripViewOf(*world_);
     const Eigen::Vector3d grip = world_->arm().GripPosition();
     s.grip_m = {static_cast<float>(grip.x()), static_cast<float>(grip.y()),
@@ -138,6 +139,36 @@ TEST_F(GripReadoutTest, ClosingHighAboveTheToastThenClosedOnNothingNoHeightHint)
   const ui::GripReadout r = Read();
   EXPECT_EQ(r.state.rfind("Closed on nothing", 0), 0u) << r.state;
   EXPECT_EQ(r.hint, "");
+}
+
+// Bad input: the wrist turned past its limit. However long the key is held, the wrist stops at
+// the limit, and the readout says so and names what turns it back, for the keys and the pad.
+TEST_F(GripReadoutTest, TheWristHeldPastItsLimitStopsThereAndTheReadoutSaysHowToTurnItBack) {
+  EXPECT_EQ(Read().wrist, "Wrist turned 0\xc2\xb0 (Home / End, up to 90\xc2\xb0 either way)");
+  EXPECT_EQ(Read(ui::TeleopMode::kScripted).wrist, "") << "the scripted teacher turns it itself";
+  for (const int sign : {1, -1}) {
+    teach::TeleopCommand command;
+    command.wrist_turn_rad_s = sign * teach::kWristTurnSpeed_rad_s;
+    for (int i = 0; i < 100; ++i) world_->Step(teach::CartesianTeleopAction(*world_, command));
+    const ui::GripView g = GripViewOf(*world_);
+    EXPECT_LE(std::abs(g.wrist_turn_deg), g.wrist_limit_deg + 1.0f) << "held 10 s past the limit";
+    EXPECT_GE(std::abs(g.wrist_turn_deg), g.wrist_limit_deg - 0.5f);
+    const ui::GripReadout keys = Read();
+    EXPECT_EQ(keys.wrist_status, ui::Status::kWarning);
+    EXPECT_EQ(keys.wrist, std::string("Wrist at its 90\xc2\xb0 limit: turn it back (") +
+                              (sign > 0 ? "End" : "Home") + ")");
+    const ui::GripReadout pad = Read(ui::TeleopMode::kGamepad);
+    EXPECT_NE(
+        pad.wrist.find(sign > 0 ? "the right stick pushed right" : "the right stick pushed left"),
+        std::string::npos)
+        << pad.wrist;
+  }
+  // Turned back from the limit, the warning goes.
+  teach::TeleopCommand back;
+  back.wrist_turn_rad_s = teach::kWristTurnSpeed_rad_s;
+  for (int i = 0; i < 5; ++i) world_->Step(teach::CartesianTeleopAction(*world_, back));
+  EXPECT_EQ(Read().wrist_status, ui::Status::kOff);
+  EXPECT_EQ(Read().wrist.rfind("Wrist turned -", 0), 0u) << Read().wrist;
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "ui/screens/grip_readout.h"
 
+#include <cmath>
+
 namespace recon::ui {
 
 namespace {
@@ -38,6 +40,30 @@ std::string GraspHint(const StudioSnapshot& s) {
   return "";
 }
 
+/// The wrist's line. Home turns it one way (positive), End and the right stick pushed right the
+/// other (gamepad_mapping.cc); at a limit the teleop holds it there however long a key is held
+/// (cartesian_teleop.cc), and the line says what turns it back.
+void WristLine(const StudioSnapshot& s, GripReadout& r) {
+  const GripView& g = s.grip;
+  if (s.teleop == TeleopMode::kScripted || g.wrist_limit_deg <= 0) return;
+  const bool gamepad = s.teleop == TeleopMode::kGamepad;
+  if (std::abs(g.wrist_turn_deg) >= g.wrist_limit_deg - 0.5f) {
+    const bool positive = g.wrist_turn_deg > 0;
+    const char* back =
+        gamepad ? (positive ? "the right stick pushed right" : "the right stick pushed left")
+                : (positive ? "End" : "Home");
+    r.wrist_status = Status::kWarning;
+    r.wrist = Format("Wrist at its %.0f\xc2\xb0 limit: turn it back (%s)", g.wrist_limit_deg, back);
+    return;
+  }
+  // Rounded, so that a turn of -0.2 degrees does not read "-0".
+  const float turn = std::round(g.wrist_turn_deg);
+  r.wrist_status = Status::kOff;
+  r.wrist = Format("Wrist turned %.0f\xc2\xb0 (%s, up to %.0f\xc2\xb0 either way)",
+                   turn == 0.0f ? 0.0f : turn, gamepad ? "right stick sideways" : "Home / End",
+                   g.wrist_limit_deg);
+}
+
 }  // namespace
 
 GripReadout ReadGrip(const StudioSnapshot& s) {
@@ -45,19 +71,24 @@ GripReadout ReadGrip(const StudioSnapshot& s) {
   const std::string object = s.grip.object.empty() ? "the object" : "the " + s.grip.object;
   switch (s.grip.state) {
     case GripState::kHolding:
-      r = {Status::kOk, "Holding " + object};
+      r.status = Status::kOk;
+      r.state = "Holding " + object;
       break;
     case GripState::kClosedOnNothing:
-      r = {Status::kError, "Closed on nothing: open (Space), line up and try again"};
+      r.status = Status::kError;
+      r.state = "Closed on nothing: open (Space), line up and try again";
       break;
     case GripState::kClosing:
-      r = {Status::kBusy, "Closing..."};
+      r.status = Status::kBusy;
+      r.state = "Closing...";
       break;
     case GripState::kOpen:
-      r = {Status::kOff, "Gripper open"};
+      r.status = Status::kOff;
+      r.state = "Gripper open";
       break;
     case GripState::kUnknown:
-      r = {Status::kOff, s.gripper_closed ? "Gripper closed" : "Gripper open"};
+      r.status = Status::kOff;
+      r.state = s.gripper_closed ? "Gripper closed" : "Gripper open";
       break;
   }
   const float height = s.grip_m[2];
@@ -72,6 +103,7 @@ GripReadout ReadGrip(const StudioSnapshot& s) {
     r.height = Format("Height %.1f cm", 100 * height);
   }
   r.hint = GraspHint(s);
+  WristLine(s, r);
   return r;
 }
 

@@ -147,18 +147,12 @@ void DrawGripState(const StudioSnapshot& s) {
   StatusText(readout.status, readout.state);
   ImGui::TextUnformatted(readout.height.c_str());
   ImGui::TextUnformatted(readout.hint.c_str());
-  const GripView& g = s.grip;
-  if (s.teleop == TeleopMode::kScripted) {
+  if (readout.wrist.empty()) {
     ImGui::TextUnformatted("");
-  } else if (std::abs(g.wrist_turn_deg) >= g.wrist_limit_deg - 0.5f) {
-    StatusText(Status::kWarning,
-               Format("Wrist at its %.0f%s limit: turn it back (%s)", g.wrist_limit_deg, "\xc2\xb0",
-                      g.wrist_turn_deg > 0 ? "End" : "Home"));
+  } else if (readout.wrist_status == Status::kWarning) {
+    StatusText(readout.wrist_status, readout.wrist);
   } else {
-    // Rounded, so that a turn of -0.2 degrees does not read "-0".
-    const float turn = std::round(g.wrist_turn_deg);
-    ImGui::TextDisabled("Wrist turned %.0f%s (Home / End, up to %.0f%s either way)",
-                        turn == 0.0f ? 0.0f : turn, "\xc2\xb0", g.wrist_limit_deg, "\xc2\xb0");
+    ImGui::TextDisabled("%s", readout.wrist.c_str());
   }
 }
 
