@@ -84,6 +84,31 @@ TEST(KeyboardPersonTest, ItWaitsForTheCountdownThenSteersTheSpotOntoTheToast) {
   EXPECT_FALSE(Holds(keys, ImGuiKey_PageDown));
 }
 
+// A person moves the spot to the toast's middle, not to the first place near enough: the key
+// stays down inside the tolerance until the middle, and a spot near enough is left alone until
+// it drifts out again. (Stopping at the tolerance's edge put every grasp of the ideal person
+// 7 mm short of the middle on the side it came from.)
+TEST(KeyboardPersonTest, AHeldKeyTakesTheSpotToTheMiddleNotToTheEdgeOfNearEnough) {
+  KeyboardPerson person;
+  // The toast's middle as the person aims at it: x 99.5 (tolerance 7 % of 40 px: 2.8 px), y at
+  // its top face (60 + 0.42 x 23).
+  const float middle_x = 99.5f, middle_y = 60 + 0.42f * 23;
+  StudioSnapshot s = Screen(40, middle_y, 0.30f);
+  person.Next(s);  // looks
+  EXPECT_TRUE(Holds(person.Next(s), ImGuiKey_RightArrow));
+  EXPECT_TRUE(Holds(person.Next(Screen(middle_x - 2.0f, middle_y, 0.30f)), ImGuiKey_RightArrow))
+      << "near enough, but not yet the middle";
+  EXPECT_FALSE(Holds(person.Next(Screen(middle_x - 0.5f, middle_y, 0.30f)), ImGuiKey_RightArrow))
+      << "at the middle";
+  EXPECT_FALSE(Holds(person.Next(Screen(middle_x - 2.0f, middle_y, 0.30f)), ImGuiKey_RightArrow))
+      << "drifted, but still near enough";
+  EXPECT_TRUE(Holds(person.Next(Screen(middle_x - 4.0f, middle_y, 0.30f)), ImGuiKey_RightArrow))
+      << "out of near enough again";
+  // Past the middle on the way: let go there.
+  EXPECT_FALSE(Holds(person.Next(Screen(middle_x + 0.8f, middle_y, 0.30f)), ImGuiKey_RightArrow));
+  EXPECT_FALSE(Holds(person.Next(Screen(middle_x + 0.8f, middle_y, 0.30f)), ImGuiKey_LeftArrow));
+}
+
 TEST(KeyboardPersonTest, ItClosesInTheGraspBandAndRetriesAMiss) {
   KeyboardPerson person;
   StudioSnapshot s = Screen(100, 70, 0.02f);

@@ -22,6 +22,8 @@ constexpr float kRetreatHeight_m = 0.28f;
 constexpr float kToastTolerance = 0.07f;
 constexpr float kPlateTolerance = 0.10f;
 constexpr int kSettledViews = 3;
+// Where a held key is let go: this share of the tolerance from the target's middle.
+constexpr float kMiddleShare = 0.25f;
 constexpr int kMaxGraspAttempts = 5;
 
 // The toast's crust and the plate's blue, by the ratios of the channels (which the lights and
@@ -175,14 +177,28 @@ FrameInput KeyboardPerson::Delayed(FrameInput decision) {
 }
 
 int KeyboardPerson::AxisKey(Axis& axis, float error, float tolerance) {
-  const int want = error > tolerance ? 1 : (error < -tolerance ? -1 : 0);
+  // A person moves the spot to where they think the middle is, not to the first place that is
+  // near enough: a key held toward the target stays down until the spot reaches the middle
+  // (within kMiddleShare of the tolerance) or passes it. Only a spot that drifts out of the
+  // tolerance again is moved again. Stopping at the tolerance's edge instead put every grasp
+  // of the ideal person 7 mm short of the toast's middle on the side it came from.
+  const int outside = error > tolerance ? 1 : (error < -tolerance ? -1 : 0);
+  const int side = error > 0 ? 1 : (error < 0 ? -1 : 0);
+  if (axis.holding != 0 && (side != axis.holding || std::abs(error) <= kMiddleShare * tolerance)) {
+    axis.holding = 0;
+  }
+  if (outside != 0) axis.holding = outside;
+  const int want = axis.holding;
   if (pace_.ideal()) return want;
   // A person who lags sees an overshoot late; after the first, they tap: one press, then wait
   // for the view to show where it went (a reaction time) before the next.
   const Clock::time_point now = now_;
   if (want != 0 && axis.last_want != 0 && want != axis.last_want) axis.tapping = true;
   if (want != 0) axis.last_want = want;
-  if (want == 0 || !axis.tapping) return want;
+  if (!axis.tapping) return want;
+  // Tapping, each tap is judged by whether the spot is near enough yet.
+  axis.holding = 0;
+  if (outside == 0) return 0;
   if (now < axis.wait_until) return 0;
   if (axis.pressed) {
     axis.pressed = false;
@@ -203,7 +219,9 @@ bool KeyboardPerson::Steer(const StudioSnapshot& s, const Target& target, FrameI
   if (right < 0) Hold(keys, ImGuiKey_LeftArrow);
   if (down < 0) Hold(keys, ImGuiKey_UpArrow);
   if (down > 0) Hold(keys, ImGuiKey_DownArrow);
-  const bool on = std::abs(ex) <= target.tolerance_x && std::abs(ey) <= target.tolerance_y;
+  // On it once near enough and no longer moving toward the middle.
+  const bool on = std::abs(ex) <= target.tolerance_x && std::abs(ey) <= target.tolerance_y &&
+                  right == 0 && down == 0;
   if (!on) {
     settled_frames_ = 0;
   } else if (s.teacher_view.frame != last_view_) {

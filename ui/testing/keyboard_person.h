@@ -88,10 +88,12 @@ class KeyboardPerson {
   FrameInput Delayed(FrameInput decision);
   /// Where the person thinks the toast's middle is: its middle, off by the aim error.
   void Aim(double scale);
-  /// How a person steers one axis of the view: the key held (-1, 0, +1) and, once they have
-  /// gone past the target, taps with a look between them.
+  /// How a person steers one axis of the view: a key held toward the target's middle until the
+  /// spot is on the middle (not merely near it), and, once they have gone past the target,
+  /// taps with a look between them.
   struct Axis {
     int last_want = 0;
+    int holding = 0;  ///< the key held toward the middle, until the spot reaches it
     bool tapping = false, pressed = false;
     std::chrono::steady_clock::time_point wait_until{};
   };
