@@ -47,21 +47,22 @@ void WristLine(const StudioSnapshot& s, GripReadout& r) {
   const GripView& g = s.grip;
   if (s.teleop == TeleopMode::kScripted || g.wrist_limit_deg <= 0) return;
   const bool gamepad = s.teleop == TeleopMode::kGamepad;
+  // Short lines: the readout is as narrow as the smallest 3-D view.
   if (std::abs(g.wrist_turn_deg) >= g.wrist_limit_deg - 0.5f) {
     const bool positive = g.wrist_turn_deg > 0;
-    const char* back =
-        gamepad ? (positive ? "the right stick pushed right" : "the right stick pushed left")
-                : (positive ? "End" : "Home");
+    const char* back = gamepad
+                           ? (positive ? "push the right stick right" : "push the right stick left")
+                           : (positive ? "turn back with End" : "turn back with Home");
     r.wrist_status = Status::kWarning;
-    r.wrist = Format("Wrist at its %.0f\xc2\xb0 limit: turn it back (%s)", g.wrist_limit_deg, back);
+    r.wrist = Format("Wrist at its %.0f\xc2\xb0 limit: %s", g.wrist_limit_deg, back);
     return;
   }
   // Rounded, so that a turn of -0.2 degrees does not read "-0".
   const float turn = std::round(g.wrist_turn_deg);
   r.wrist_status = Status::kOff;
-  r.wrist = Format("Wrist turned %.0f\xc2\xb0 (%s, up to %.0f\xc2\xb0 either way)",
-                   turn == 0.0f ? 0.0f : turn, gamepad ? "right stick sideways" : "Home / End",
-                   g.wrist_limit_deg);
+  r.wrist =
+      Format("Wrist turned %.0f\xc2\xb0 (%s, up to %.0f\xc2\xb0 either way)",
+             turn == 0.0f ? 0.0f : turn, gamepad ? "right stick" : "Home / End", g.wrist_limit_deg);
 }
 
 }  // namespace

@@ -159,15 +159,24 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   ImGui::SetNextWindowPos(ImVec2(Px(kSidebarWidth), top));
   ImGui::SetNextWindowSize(ImVec2(display.x - Px(kSidebarWidth), body));
   // Narrower than the smallest layout: the screen keeps that layout and scrolls sideways,
-  // rather than squeezing its columns until they overflow.
+  // rather than squeezing its columns until they overflow. The screens size their panels by
+  // the room they see (GetContentRegionAvail), so they are drawn in a child as wide as the
+  // smallest layout's screen, which scrolls up and down itself; the window scrolls it sideways.
   const float min_content = Px(static_cast<float>(kMinWindowWidth) - kSidebarWidth) -
                             2 * ImGui::GetStyle().WindowPadding.x;
-  if (display.x < Px(static_cast<float>(kMinWindowWidth))) {
-    ImGui::SetNextWindowContentSize(ImVec2(min_content, 0));
-  }
+  const bool narrow = display.x < Px(static_cast<float>(kMinWindowWidth));
   ImGui::Begin("Screen", nullptr, kScrollingPanel);
+  if (narrow) {
+    // Without a horizontal scrollbar of its own: with one, the room a child reports grows with
+    // what it drew last, and its panels widen past it.
+    // The screen's own padding inside it, so that its content has the smallest layout's room.
+    ImGui::BeginChild("smallest-layout",
+                      ImVec2(min_content + 2 * ImGui::GetStyle().WindowPadding.x, 0), false,
+                      ImGuiWindowFlags_AlwaysUseWindowPadding);
+  }
   ScrollToTopOnNewStep(snapshot);
   DrawScreen(context);
+  if (narrow) ImGui::EndChild();
   ImGui::End();
   DrawErrors(snapshot, commands, ImVec2(Px(kSidebarWidth), top + body),
              display.x - Px(kSidebarWidth));

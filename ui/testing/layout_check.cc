@@ -4,6 +4,7 @@
 #include <imgui_internal.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "ui/widgets/widgets.h"
 
@@ -53,9 +54,17 @@ void CheckWindows(std::vector<std::string>& faults) {
     }
     // A menu bar alone (the main menu bar) has no inner part to overflow.
     if ((w->Flags & ImGuiWindowFlags_MenuBar) != 0 && w->InnerRect.GetHeight() <= 0) continue;
-    // Where the content ends, against where the panel's view ends.
-    const float below = w->DC.CursorMaxPos.y - w->InnerClipRect.Max.y;
-    const float right = w->DC.CursorMaxPos.x - w->InnerClipRect.Max.x;
+    // Where the content ends, against where the panel's view ends. A child that its parent
+    // shows only in part (the parent scrolls) ends where its own rectangle ends: what lies
+    // beyond the parent's view is the parent's to scroll, and the parent is checked too (its
+    // content includes the child).
+    const float view_bottom =
+        std::max(w->InnerClipRect.Max.y, std::floor(w->InnerRect.Max.y - w->WindowBorderSize));
+    const float view_right = std::max(
+        w->InnerClipRect.Max.x,
+        w->InnerRect.Max.x - std::max(std::floor(w->WindowPadding.x * 0.5f), w->WindowBorderSize));
+    const float below = w->DC.CursorMaxPos.y - view_bottom;
+    const float right = w->DC.CursorMaxPos.x - view_right;
     if (below > kSlack && !w->ScrollbarY) {
       faults.push_back(Format("'%s': %.0f px of content below its bottom edge, and no scrollbar",
                               w->Name, below));
