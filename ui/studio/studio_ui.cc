@@ -167,9 +167,9 @@ void DrawStudio(const StudioSnapshot& snapshot, CommandQueue& commands, StudioTe
   const bool narrow = display.x < Px(static_cast<float>(kMinWindowWidth));
   ImGui::Begin("Screen", nullptr, kScrollingPanel);
   if (narrow) {
-    // Without a horizontal scrollbar of its own: with one, the room a child reports grows with
-    // what it drew last, and its panels widen past it.
-    // The screen's own padding inside it, so that its content has the smallest layout's room.
+    // Padded as the screen is, so that its content has the smallest layout's room; without a
+    // horizontal scrollbar of its own, as with one the room a child reports grows with what it
+    // drew last and its panels widen past it.
     ImGui::BeginChild("smallest-layout",
                       ImVec2(min_content + 2 * ImGui::GetStyle().WindowPadding.x, 0), false,
                       ImGuiWindowFlags_AlwaysUseWindowPadding);
